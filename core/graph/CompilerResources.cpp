@@ -1,0 +1,256 @@
+// Compile stages 6-8: resource resolution, aliasing of transient images, barrier plan.
+#include <algorithm>
+#include <cmath>
+
+#include "core/graph/CompilerStages.h"
+#include "core/util/Error.h"
+#include "core/vk/Formats.h"
+
+namespace fovea::graph {
+
+const char* lifetimeName(Lifetime l) {
+    switch (l) {
+        case Lifetime::Transient: return "transient";
+        case Lifetime::Output: return "output";
+        case Lifetime::History: return "history";
+        case Lifetime::Persistent: return "persistent";
+    }
+    return "?";
+}
+
+uint64_t ResourcePlan::bytes() const {
+    if (!isImage) return bufferBytes;
+    return uint64_t(width) * height * gpu::formatBytesPerPixel(format);
+}
+
+uint64_t CompiledPlan::transientBytes() const {
+    uint64_t total = 0;
+    for (const auto& g : aliasGroups) total += g.bytes;
+    for (const auto& r : resources)
+        if (r.lifetime == Lifetime::Transient && r.aliasGroup < 0) total += r.bytes();
+    return total;
+}
+
+uint64_t CompiledPlan::transientBytesWithoutAliasing() const {
+    uint64_t total = 0;
+    for (const auto& r : resources)
+        if (r.lifetime == Lifetime::Transient) total += r.bytes();
+    return total;
+}
+
+uint64_t CompiledPlan::persistentBytes() const {
+    uint64_t total = 0;
+    for (const auto& r : resources)
+        if (r.lifetime != Lifetime::Transient) total += r.bytes() * r.ringSize;
+    return total;
+}
+
+namespace {
+
+std::string sizeText(uint32_t w, uint32_t h) { return std::to_string(w) + "x" + std::to_string(h); }
+
+// The size a field's rule asks for, or false when it depends on an unresolved input.
+bool ruleSize(const CompiledPlan& plan, size_t node, const FieldDesc& f, uint32_t& w,
+              uint32_t& h) {
+    const CompileOptions& o = plan.options;
+    switch (f.size) {
+        case SizeRule::Any:
+        case SizeRule::Screen:
+            w = o.width;
+            h = o.height;
+            return true;
+        case SizeRule::Scaled:
+            // Round up so a scaled buffer always covers the screen it is scaled from.
+            w = std::max(1u, uint32_t(std::ceil(o.width * double(f.scale))));
+            h = std::max(1u, uint32_t(std::ceil(o.height * double(f.scale))));
+            return true;
+        case SizeRule::Fixed:
+            w = f.width;
+            h = f.height;
+            return true;
+        case SizeRule::SameAsInput: {
+            auto it = plan.inputs.find({node, f.sameAs});
+            if (it == plan.inputs.end()) {  // optional input left open: fall back to screen
+                w = o.width;
+                h = o.height;
+                return true;
+            }
+            auto res = plan.resourceOf.find({it->second.node, it->second.field});
+            if (res == plan.resourceOf.end() || plan.resources[res->second].width == 0)
+                return false;
+            w = plan.resources[res->second].width;
+            h = plan.resources[res->second].height;
+            return true;
+        }
+        case SizeRule::Buffer: w = h = 0; return true;
+    }
+    return false;
+}
+
+}  // namespace
+
+void resolveResources(CompiledPlan& plan) {
+    plan.resources.clear();
+    plan.resourceOf.clear();
+    // Create every resource, then resolve sizes until no progress (same-as-input chains may run
+    // through delayed edges whose producer comes later in the order).
+    for (int pos = 0; pos < int(plan.order.size()); ++pos) {
+        size_t n = plan.order[pos];
+        for (const FieldDesc& f : plan.nodes[n].reflection.fields()) {
+            if (f.kind == FieldKind::Input) continue;
+            if (f.size == SizeRule::SameAsInput && !plan.nodes[n].reflection.find(f.sameAs))
+                throw std::logic_error("pass type " + plan.nodes[n].type + ": field '" + f.name +
+                                       "' is sized like unknown input '" + f.sameAs + "'");
+            ResourcePlan r;
+            r.name = plan.nodes[n].name + "." + f.name;
+            r.producer = n;
+            r.field = f.name;
+            r.isImage = f.isImage();
+            r.format = f.format;
+            r.bufferBytes = f.bufferBytes;
+            r.firstUse = r.lastUse = pos;
+            if (f.persistent || plan.nodes[n].pass->cacheable()) r.lifetime = Lifetime::Persistent;
+            plan.resourceOf[{n, f.name}] = plan.resources.size();
+            plan.resources.push_back(r);
+        }
+    }
+    for (bool progress = true; progress;) {
+        progress = false;
+        for (auto& r : plan.resources) {
+            if (!r.isImage || r.width != 0) continue;
+            const FieldDesc& f = *plan.nodes[r.producer].reflection.find(r.field);
+            if (ruleSize(plan, r.producer, f, r.width, r.height)) progress = true;
+        }
+    }
+    for (const auto& r : plan.resources)
+        if (r.isImage && r.width == 0)
+            throw InputError(plan.file, "/edges",
+                             "cannot resolve the size of '" + r.name +
+                                 "': its same-as-input chain loops through delayed edges");
+
+    // Connect inputs, check their size rules, extend lifetimes, mark history rings.
+    for (auto& [key, src] : plan.inputs) {
+        const auto& [n, field] = key;
+        src.resource = plan.resourceOf.at({src.node, src.field});
+        ResourcePlan& r = plan.resources[src.resource];
+        const FieldDesc& f = *plan.nodes[n].reflection.find(field);
+        if (f.isImage() && f.size != SizeRule::Any) {
+            uint32_t w = 0, h = 0;
+            if (ruleSize(plan, n, f, w, h) && (w != r.width || h != r.height))
+                throw InputError(plan.file, src.pointer,
+                                 "size mismatch: '" + r.name + "' is " +
+                                     sizeText(r.width, r.height) + " but '" + plan.nodes[n].name +
+                                     "." + field + "' expects " + sizeText(w, h) + " (" +
+                                     sizeRuleName(f.size) +
+                                     (f.size == SizeRule::SameAsInput ? " '" + f.sameAs + "'" : "") +
+                                     ")");
+        }
+        if (src.delay > 0) {
+            r.lifetime = Lifetime::History;
+            r.ringSize = std::max(r.ringSize, src.delay + 1);
+        } else {
+            r.lastUse = std::max(r.lastUse, plan.positionOf(n));
+        }
+    }
+    for (const auto& [n, field] : plan.outputs) {
+        if (!plan.nodes[n].alive) continue;
+        ResourcePlan& r = plan.resources[plan.resourceOf.at({n, field})];
+        if (r.lifetime != Lifetime::History) r.lifetime = Lifetime::Output;
+    }
+    // Anything that outlives the frame is live for the whole frame.
+    for (auto& r : plan.resources)
+        if (r.lifetime != Lifetime::Transient) {
+            r.firstUse = 0;
+            r.lastUse = int(plan.order.size()) - 1;
+        }
+}
+
+void aliasResources(CompiledPlan& plan) {
+    plan.aliasGroups.clear();
+    for (auto& r : plan.resources) r.aliasGroup = -1;
+    if (!plan.options.aliasing) return;
+    std::vector<size_t> transient;
+    for (size_t i = 0; i < plan.resources.size(); ++i)
+        if (plan.resources[i].lifetime == Lifetime::Transient && plan.resources[i].isImage)
+            transient.push_back(i);
+    // Greedy interval colouring: by first use; join the free group whose size is closest.
+    std::stable_sort(transient.begin(), transient.end(), [&](size_t a, size_t b) {
+        return plan.resources[a].firstUse < plan.resources[b].firstUse;
+    });
+    std::vector<int> groupLastUse;
+    for (size_t i : transient) {
+        ResourcePlan& r = plan.resources[i];
+        int best = -1;
+        uint64_t bestCost = ~0ull;
+        for (size_t g = 0; g < plan.aliasGroups.size(); ++g) {
+            if (groupLastUse[g] >= r.firstUse) continue;  // still in use: lifetimes overlap
+            uint64_t gb = plan.aliasGroups[g].bytes, rb = r.bytes();
+            uint64_t cost = gb > rb ? gb - rb : rb - gb;
+            if (cost < bestCost) {
+                bestCost = cost;
+                best = int(g);
+            }
+        }
+        if (best < 0) {
+            best = int(plan.aliasGroups.size());
+            plan.aliasGroups.emplace_back();
+            groupLastUse.push_back(-1);
+        }
+        AliasGroup& g = plan.aliasGroups[best];
+        g.members.push_back(i);
+        g.bytes = std::max(g.bytes, r.bytes());
+        groupLastUse[best] = r.lastUse;
+        r.aliasGroup = best;
+    }
+}
+
+void planBarriers(CompiledPlan& plan) {
+    plan.barriers.clear();
+    // One global memory barrier covers every write before it, so a read only needs a barrier
+    // when its writer ran after the last one. Aliased images get a layout initialization at
+    // their first write (the previous member's content is garbage by then).
+    int lastBarrier = -1;
+    for (int pos = 0; pos < int(plan.order.size()); ++pos) {
+        size_t n = plan.order[pos];
+        BarrierPlan b;
+        b.position = pos;
+        for (const auto& [key, src] : plan.inputs) {
+            if (key.first != n || src.delay > 0) continue;
+            int writer = plan.positionOf(src.node);
+            if (writer > lastBarrier && writer < pos)
+                b.hazards.push_back("RAW " + plan.nodes[n].name + "." + key.second + " <- " +
+                                    plan.resources[src.resource].name);
+        }
+        for (size_t i = 0; i < plan.resources.size(); ++i) {
+            const ResourcePlan& r = plan.resources[i];
+            if (r.aliasGroup < 0 || r.firstUse != pos) continue;
+            b.initialize.push_back(i);
+            const auto& members = plan.aliasGroups[r.aliasGroup].members;
+            auto it = std::find(members.begin(), members.end(), i);
+            if (it != members.begin())
+                b.hazards.push_back("WAR alias " + r.name + " reuses the memory of " +
+                                    plan.resources[*(it - 1)].name);
+        }
+        if (!b.hazards.empty() || !b.initialize.empty()) {
+            plan.barriers.push_back(b);
+            lastBarrier = pos;
+        }
+    }
+}
+
+CompiledPlan compileGraphPlan(const GraphDesc& desc, const PassRegistry& registry,
+                              const CompileOptions& options) {
+    CompiledPlan plan;
+    plan.options = options;
+    instantiatePasses(desc, registry, plan);
+    reflectPasses(plan);
+    checkEdges(desc, plan);
+    cullPasses(plan);
+    orderPasses(plan);
+    resolveResources(plan);
+    aliasResources(plan);
+    planBarriers(plan);
+    return plan;
+}
+
+}  // namespace fovea::graph

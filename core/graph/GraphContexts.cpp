@@ -1,0 +1,87 @@
+#include "core/graph/GraphContexts.h"
+
+#include "core/graph/RenderGraph.h"
+#include "core/util/DidYouMean.h"
+#include "core/util/Error.h"
+#include "core/vk/ComputePipeline.h"
+#include "core/vk/Context.h"
+#include "core/vk/Resources.h"
+
+namespace fovea::graph {
+
+gpu::Context& GraphCompileContext::gpu() { return mGraph.gpu(); }
+
+ResourceExtent GraphCompileContext::extent(const std::string& field) const {
+    size_t resource = kNone;
+    if (auto own = mPlan.resourceOf.find({mNode, field}); own != mPlan.resourceOf.end())
+        resource = own->second;
+    else if (auto in = mPlan.inputs.find({mNode, field}); in != mPlan.inputs.end())
+        resource = in->second.resource;
+    if (resource == kNone) return {};
+    const ResourcePlan& r = mPlan.resources[resource];
+    return {r.width, r.height, r.format, r.bufferBytes};
+}
+
+bool GraphCompileContext::connected(const std::string& input) const {
+    return mPlan.inputs.count({mNode, input}) > 0;
+}
+
+std::unique_ptr<gpu::ComputePipeline> GraphCompileContext::createPipeline(
+    const std::string& shaderPath, const std::vector<std::pair<std::string, std::string>>& defines,
+    const std::vector<std::string>& extraResources) {
+    auto pipeline = std::make_unique<gpu::ComputePipeline>(mGraph.gpu(), shaderPath, defines);
+    const PassNode& node = mPlan.nodes[mNode];
+    std::vector<std::string> names = extraResources;
+    for (const auto& f : node.reflection.fields()) names.push_back(f.name);
+    // Binding by name: every resource the shader declares must be a field of the pass (or one
+    // the pass binds itself). Catching it here turns a silent unbound descriptor into an error.
+    for (const auto& b : pipeline->interface().bindings) {
+        if (std::find(names.begin(), names.end(), b.name) != names.end()) continue;
+        std::string fields;
+        for (const auto& f : node.reflection.fields()) fields += (fields.empty() ? "" : ", ") + f.name;
+        throw RuntimeError("pass '" + node.name + "' (" + node.type + "): shader '" + shaderPath +
+                           "' expects resource '" + b.name + "' but the pass has no such field" +
+                           didYouMean(b.name, names) + " (fields: " + fields + ")");
+    }
+    return pipeline;
+}
+
+gpu::Context& GraphExecuteContext::gpu() { return mGraph.gpu(); }
+
+bool GraphExecuteContext::connected(const std::string& input) const {
+    return mPlan.inputs.count({mNode, input}) > 0;
+}
+
+const gpu::Image& GraphExecuteContext::image(const std::string& field) {
+    return mGraph.imageFor(mNode, field);
+}
+
+const gpu::Buffer& GraphExecuteContext::buffer(const std::string& field) {
+    return mGraph.bufferFor(mNode, field);
+}
+
+bool GraphExecuteContext::historyValid(const std::string& input) const {
+    return mGraph.historyValidFor(mNode, input);
+}
+
+void GraphExecuteContext::bindFields(gpu::ComputePipeline& pipeline) {
+    const PassNode& node = mPlan.nodes[mNode];
+    for (const auto& b : pipeline.interface().bindings) {
+        const FieldDesc* f = node.reflection.find(b.name);
+        if (!f) continue;  // bound by the pass itself (checked at compile)
+        bool isBuffer = b.kind == gpu::DescriptorKind::StorageBuffer ||
+                        b.kind == gpu::DescriptorKind::UniformBuffer;
+        if (f->kind == FieldKind::Input && !connected(f->name)) {
+            // Optional input left open: bind a 1x1 zero image so the shader's descriptor is
+            // valid; the pass decides from connected() whether to read it.
+            if (!isBuffer) pipeline.bind(b.name, mGraph.dummyImage(b.imageFormat));
+            continue;
+        }
+        if (isBuffer)
+            pipeline.bind(b.name, buffer(f->name));
+        else
+            pipeline.bind(b.name, image(f->name));
+    }
+}
+
+}  // namespace fovea::graph

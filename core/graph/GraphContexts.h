@@ -1,0 +1,51 @@
+// The CompileContext / ExecuteContext a RenderGraph hands to one pass.
+#pragma once
+#include "core/graph/GraphPlan.h"
+#include "core/graph/Pass.h"
+
+namespace fovea::graph {
+
+class RenderGraph;
+
+class GraphCompileContext : public CompileContext {
+public:
+    GraphCompileContext(RenderGraph& graph, const CompiledPlan& plan, size_t node)
+        : mGraph(graph), mPlan(plan), mNode(node) {}
+    gpu::Context& gpu() override;
+    const FrameInfo& renderSize() const override { return mSize; }
+    ResourceExtent extent(const std::string& field) const override;
+    bool connected(const std::string& input) const override;
+    std::unique_ptr<gpu::ComputePipeline> createPipeline(
+        const std::string& shaderPath, const std::vector<std::pair<std::string, std::string>>& defines,
+        const std::vector<std::string>& extraResources) override;
+
+private:
+    RenderGraph& mGraph;
+    const CompiledPlan& mPlan;
+    size_t mNode;
+    FrameInfo mSize{0, 0, 0, mPlan.options.width, mPlan.options.height};
+};
+
+class GraphExecuteContext : public ExecuteContext {
+public:
+    GraphExecuteContext(RenderGraph& graph, const CompiledPlan& plan, size_t node,
+                        const vk::raii::CommandBuffer& cmd, const FrameInfo& frame)
+        : mGraph(graph), mPlan(plan), mNode(node), mCmd(cmd), mFrame(frame) {}
+    gpu::Context& gpu() override;
+    const vk::raii::CommandBuffer& cmd() override { return mCmd; }
+    const FrameInfo& frame() const override { return mFrame; }
+    bool connected(const std::string& input) const override;
+    const gpu::Image& image(const std::string& field) override;
+    const gpu::Buffer& buffer(const std::string& field) override;
+    bool historyValid(const std::string& input) const override;
+    void bindFields(gpu::ComputePipeline& pipeline) override;
+
+private:
+    RenderGraph& mGraph;
+    const CompiledPlan& mPlan;
+    size_t mNode;
+    const vk::raii::CommandBuffer& mCmd;
+    const FrameInfo& mFrame;
+};
+
+}  // namespace fovea::graph

@@ -1,0 +1,118 @@
+// The pass contract. Every technique in fovea is a Pass: it declares parameters (params),
+// resources (reflect), what it needs from the scene (sceneNeeds), builds pipelines once sizes and
+// formats are final (compile), records commands (execute), and says when it may be skipped
+// (isActive + bypass, cacheable). Barriers, allocation and history are the graph's job.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <vulkan/vulkan_raii.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/graph/Param.h"
+#include "core/graph/Reflection.h"
+
+namespace fovea::gpu {
+class Context;
+class Image;
+class Buffer;
+class ComputePipeline;
+}  // namespace fovea::gpu
+
+namespace fovea::graph {
+
+// Scene features a pass can require. A pass whose needs the loaded scene does not meet is culled
+// (with a reason) instead of running on missing data.
+enum SceneFeature : uint32_t {
+    kSceneGeometry = 1u << 0,   // any triangles at all (a scene was loaded)
+    kSceneEmissive = 1u << 1,   // emissive triangles
+    kSceneTextures = 1u << 2,   // textured materials
+    kScenePunctual = 1u << 3,   // point/spot/directional lights
+    kSceneStereo = 1u << 4,     // a stereo camera rig
+};
+std::vector<std::string> sceneFeatureNames(uint32_t mask);
+
+struct FrameInfo {
+    uint64_t index = 0;             // frames since the run started
+    uint64_t framesSinceReset = 0;  // 0 on the first frame and after reset/resize/camera cut
+    uint64_t seed = 0;
+    uint32_t width = 0, height = 0;  // render size
+};
+
+struct ResourceExtent {
+    uint32_t width = 0, height = 0;
+    vk::Format format = vk::Format::eUndefined;
+    uint64_t bytes = 0;  // buffers
+};
+
+// Handed to Pass::compile once sizes, formats and the scene are final.
+class CompileContext {
+public:
+    virtual ~CompileContext() = default;
+    virtual gpu::Context& gpu() = 0;
+    virtual const FrameInfo& renderSize() const = 0;  // width/height of the graph
+    // Size/format of a field as resolved by the graph (inputs: of the connected source).
+    virtual ResourceExtent extent(const std::string& field) const = 0;
+    virtual bool connected(const std::string& input) const = 0;
+    // Creates a pipeline and checks that every resource the shader declares is a field of this
+    // pass or listed in `extraResources` (resources the pass binds itself, e.g. a scene buffer).
+    // A shader expecting `normal` in a pass that has none is a clear error here, not at dispatch.
+    virtual std::unique_ptr<gpu::ComputePipeline> createPipeline(
+        const std::string& shaderPath,
+        const std::vector<std::pair<std::string, std::string>>& defines = {},
+        const std::vector<std::string>& extraResources = {}) = 0;
+};
+
+// Handed to Pass::execute each frame.
+class ExecuteContext {
+public:
+    virtual ~ExecuteContext() = default;
+    virtual gpu::Context& gpu() = 0;
+    virtual const vk::raii::CommandBuffer& cmd() = 0;
+    virtual const FrameInfo& frame() const = 0;
+    virtual bool connected(const std::string& input) const = 0;
+    // The image behind a field (input: the connected source's current or delayed image).
+    virtual const gpu::Image& image(const std::string& field) = 0;
+    virtual const gpu::Buffer& buffer(const std::string& field) = 0;
+    // False for a delayed input whose history does not exist yet (first frames, reset, resize,
+    // camera cut); true for any other connected input.
+    virtual bool historyValid(const std::string& input) const = 0;
+    // Binds every shader resource whose name is a connected field of this pass.
+    virtual void bindFields(gpu::ComputePipeline& pipeline) = 0;
+};
+
+class Pass {
+public:
+    virtual ~Pass() = default;
+
+    virtual void params(ParamVisitor&) {}
+    virtual void reflect(Reflection& r) const = 0;
+    virtual uint32_t sceneNeeds() const { return 0; }
+    virtual void compile(CompileContext&) {}
+    virtual void execute(ExecuteContext& ctx) = 0;
+
+    // Frame-level skipping. When isActive() is false the graph copies each bypass pair's input
+    // into its output (same size/format required) instead of executing; outputs without a bypass
+    // keep their previous content.
+    virtual bool isActive(const FrameInfo&) const { return true; }
+    virtual std::vector<std::pair<std::string, std::string>> bypass() const { return {}; }
+    // A cacheable pass's outputs depend only on its inputs and parameters: when neither changed
+    // since its last execution, the graph does not run it again.
+    virtual bool cacheable() const { return false; }
+    // Called on reset/resize/camera cut so a pass can drop CPU-side temporal state.
+    virtual void onReset() {}
+
+    const std::string& name() const { return mName; }
+    const std::string& type() const { return mType; }
+    void setIdentity(std::string name, std::string type) {
+        mName = std::move(name);
+        mType = std::move(type);
+    }
+
+private:
+    std::string mName;
+    std::string mType;
+};
+
+}  // namespace fovea::graph

@@ -1,0 +1,235 @@
+#include "core/graph/RenderGraph.h"
+#include "core/graph/RuntimeResource.h"
+
+#include <chrono>
+
+#include "core/graph/GraphContexts.h"
+#include "core/util/Error.h"
+#include "core/vk/Context.h"
+#include "core/vk/Formats.h"
+#include "core/vk/Resources.h"
+#include "core/vk/Timestamps.h"
+
+namespace fovea::graph {
+
+
+namespace {
+std::string historyKey(const ResourcePlan& r) {
+    return r.name + "|" + std::to_string(r.width) + "x" + std::to_string(r.height) + "|" +
+           gpu::formatName(r.format) + "|" + std::to_string(r.ringSize);
+}
+gpu::ImageDesc imageDesc(const ResourcePlan& r) {
+    gpu::ImageDesc d;
+    d.width = r.width;
+    d.height = r.height;
+    d.format = r.format;
+    d.debugName = r.name;
+    return d;
+}
+}  // namespace
+
+const char* passStatusName(PassStatus s) {
+    switch (s) {
+        case PassStatus::Executed: return "executed";
+        case PassStatus::Culled: return "culled";
+        case PassStatus::Skipped: return "skipped";
+        case PassStatus::Cached: return "cached";
+        case PassStatus::Bypassed: return "bypassed";
+    }
+    return "?";
+}
+
+RenderGraph::RenderGraph(gpu::Context& gpu, const PassRegistry& registry)
+    : mGpu(gpu), mRegistry(registry) {
+    const auto& device = mGpu.device();
+    mCommandPool = std::make_unique<vk::raii::CommandPool>(
+        device, vk::CommandPoolCreateInfo{
+                    .flags = vk::CommandPoolCreateFlagBits::eResetCommandBuffer,
+                    .queueFamilyIndex = mGpu.queueFamily()});
+    vk::raii::CommandBuffers buffers(
+        device, vk::CommandBufferAllocateInfo{.commandPool = **mCommandPool,
+                                              .level = vk::CommandBufferLevel::ePrimary,
+                                              .commandBufferCount = 1});
+    mCommandBuffer = std::make_unique<vk::raii::CommandBuffer>(std::move(buffers[0]));
+    mFence = std::make_unique<vk::raii::Fence>(device, vk::FenceCreateInfo{});
+}
+
+RenderGraph::~RenderGraph() = default;
+
+void RenderGraph::build(const GraphDesc& desc, const CompileOptions& options) {
+    CompiledPlan plan = compileGraphPlan(desc, mRegistry, options);
+    bool sizeChanged = options.width != mFrame.width || options.height != mFrame.height;
+    // Keep history rings of the previous build for reuse by identical resources.
+    for (size_t i = 0; i < mResources.size(); ++i)
+        if (mPlan.resources[i].lifetime == Lifetime::History)
+            mKeptHistory[mResources[i]->key] = std::move(mResources[i]);
+    mResources.clear();
+    mBlocks.clear();
+    mDesc = desc;
+    mPlan = std::move(plan);
+    mFrame.width = options.width;
+    mFrame.height = options.height;
+    mRecords.assign(mPlan.nodes.size(), PassRecord{});
+    for (size_t n = 0; n < mPlan.nodes.size(); ++n)
+        if (!mPlan.nodes[n].alive) {
+            mRecords[n].status = PassStatus::Culled;
+            mRecords[n].reason = mPlan.nodes[n].cullReason;
+        }
+    mLastCacheKey.assign(mPlan.nodes.size(), 0);
+    allocate();
+    mKeptHistory.clear();
+    compilePasses();
+    mTimestamps = std::make_unique<gpu::TimestampPool>(
+        mGpu, uint32_t(std::max<size_t>(2, 2 * mPlan.order.size())));
+    if (sizeChanged) reset();
+}
+
+void RenderGraph::resize(uint32_t width, uint32_t height) {
+    CompileOptions options = mPlan.options;
+    options.width = width;
+    options.height = height;
+    build(mDesc, options);
+    reset();
+}
+
+void RenderGraph::reset() {
+    mFrame.framesSinceReset = 0;
+    std::fill(mLastCacheKey.begin(), mLastCacheKey.end(), 0);
+    for (size_t n : mPlan.order) mPlan.nodes[n].pass->onReset();
+}
+
+void RenderGraph::allocate() {
+    mAllocatedTransient = mAllocatedPersistent = 0;
+    mResources.resize(mPlan.resources.size());
+    // Alias groups: one memory block per group, sized for its largest member.
+    std::vector<std::shared_ptr<gpu::MemoryBlock>> groupBlocks(mPlan.aliasGroups.size());
+    for (size_t g = 0; g < mPlan.aliasGroups.size(); ++g) {
+        vk::DeviceSize size = 0;
+        uint32_t typeBits = ~0u;
+        for (size_t m : mPlan.aliasGroups[g].members) {
+            auto req = gpu::Image::memoryRequirements(mGpu, imageDesc(mPlan.resources[m]));
+            size = std::max(size, req.size);
+            typeBits &= req.memoryTypeBits;
+        }
+        if (typeBits == 0)
+            throw RuntimeError("alias group " + std::to_string(g) +
+                               ": members need incompatible memory types");
+        groupBlocks[g] = std::make_shared<gpu::MemoryBlock>(mGpu, size, typeBits);
+        mBlocks.push_back(groupBlocks[g]);
+        mAllocatedTransient += size;
+    }
+    for (size_t i = 0; i < mPlan.resources.size(); ++i) {
+        const ResourcePlan& r = mPlan.resources[i];
+        std::string key = historyKey(r);
+        if (r.lifetime == Lifetime::History) {
+            auto kept = mKeptHistory.find(key);
+            if (kept != mKeptHistory.end()) {
+                mResources[i] = std::move(kept->second);
+                mKeptHistory.erase(kept);
+                for (const auto& img : mResources[i]->ring)
+                    mAllocatedPersistent += img->allocationSize();
+                continue;
+            }
+        }
+        auto res = std::make_unique<RuntimeResource>();
+        res->key = key;
+        if (!r.isImage) {
+            res->buffer = std::make_unique<gpu::Buffer>(mGpu, r.bufferBytes);
+            (r.lifetime == Lifetime::Transient ? mAllocatedTransient : mAllocatedPersistent) +=
+                r.bufferBytes;
+        } else if (r.aliasGroup >= 0) {
+            res->ring.push_back(
+                std::make_unique<gpu::Image>(mGpu, imageDesc(r), groupBlocks[r.aliasGroup], 0));
+        } else {
+            for (uint32_t s = 0; s < r.ringSize; ++s) {
+                res->ring.push_back(std::make_unique<gpu::Image>(mGpu, imageDesc(r)));
+                (r.lifetime == Lifetime::Transient ? mAllocatedTransient : mAllocatedPersistent) +=
+                    res->ring.back()->allocationSize();
+            }
+        }
+        mResources[i] = std::move(res);
+    }
+}
+
+void RenderGraph::compilePasses() {
+    for (size_t n : mPlan.order) {
+        PassNode& node = mPlan.nodes[n];
+        GraphCompileContext ctx(*this, mPlan, n);
+        node.pass->compile(ctx);
+        // Bypass pairs must be copyable: same size and format (checked once, here).
+        for (const auto& [input, output] : node.pass->bypass()) {
+            if (!mPlan.inputs.count({n, input})) continue;
+            ResourceExtent a = ctx.extent(input), b = ctx.extent(output);
+            if (a.width != b.width || a.height != b.height || a.format != b.format)
+                throw InputError(mPlan.file, node.pointer,
+                                 "pass '" + node.name + "' bypasses '" + input + "' into '" +
+                                     output + "' but they differ in size or format");
+        }
+    }
+}
+
+size_t RenderGraph::slotOf(const RuntimeResource& r, uint32_t delay) const {
+    const uint64_t ring = r.ring.size();
+    return size_t(((mFrame.index % ring) + ring - (delay % ring)) % ring);
+}
+
+const gpu::Image& RenderGraph::imageFor(size_t node, const std::string& field) const {
+    auto own = mPlan.resourceOf.find({node, field});
+    if (own != mPlan.resourceOf.end()) {
+        const RuntimeResource& r = *mResources[own->second];
+        return *r.ring[slotOf(r, 0)];
+    }
+    auto in = mPlan.inputs.find({node, field});
+    if (in == mPlan.inputs.end())
+        throw RuntimeError("pass '" + mPlan.nodes[node].name + "' asked for unconnected field '" +
+                           field + "'");
+    const RuntimeResource& r = *mResources[in->second.resource];
+    if (r.ring.empty())
+        throw RuntimeError("field '" + field + "' of pass '" + mPlan.nodes[node].name +
+                           "' is a buffer, not an image");
+    return *r.ring[slotOf(r, in->second.delay)];
+}
+
+const gpu::Buffer& RenderGraph::bufferFor(size_t node, const std::string& field) const {
+    auto own = mPlan.resourceOf.find({node, field});
+    size_t index;
+    if (own != mPlan.resourceOf.end()) {
+        index = own->second;
+    } else {
+        auto in = mPlan.inputs.find({node, field});
+        if (in == mPlan.inputs.end())
+            throw RuntimeError("pass '" + mPlan.nodes[node].name +
+                               "' asked for unconnected field '" + field + "'");
+        index = in->second.resource;
+    }
+    if (!mResources[index]->buffer)
+        throw RuntimeError("field '" + field + "' of pass '" + mPlan.nodes[node].name +
+                           "' is an image, not a buffer");
+    return *mResources[index]->buffer;
+}
+
+bool RenderGraph::historyValidFor(size_t node, const std::string& input) const {
+    auto in = mPlan.inputs.find({node, input});
+    if (in == mPlan.inputs.end()) return false;
+    return mFrame.framesSinceReset >= in->second.delay;
+}
+
+const gpu::Image& RenderGraph::dummyImage(vk::Format format) {
+    if (format == vk::Format::eUndefined) format = vk::Format::eR32G32B32A32Sfloat;
+    auto& slot = mDummies[format];
+    if (!slot) slot = std::make_unique<gpu::Image>(mGpu, gpu::ImageDesc{.width = 1, .height = 1, .format = format, .debugName = "dummy"});
+    return *slot;
+}
+
+const gpu::Image& RenderGraph::image(const std::string& resourceName) const {
+    for (size_t i = 0; i < mPlan.resources.size(); ++i)
+        if (mPlan.resources[i].name == resourceName && mPlan.resources[i].isImage) {
+            const RuntimeResource& r = *mResources[i];
+            // The frame index already advanced past the frame that wrote it.
+            const uint64_t ring = r.ring.size();
+            return *r.ring[size_t((mFrame.index + ring - 1) % ring)];
+        }
+    throw RuntimeError("no live image resource '" + resourceName + "'");
+}
+
+}  // namespace fovea::graph

@@ -1,0 +1,102 @@
+// The runtime side of a graph: allocates what a CompiledPlan describes (aliased transients in
+// shared memory blocks, history rings kept across rebuilds), compiles every live pass, and
+// executes frames: barriers from the plan, bypass of inactive passes, skipping of cached passes,
+// GPU timestamps around every pass.
+#pragma once
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/graph/CompilerStages.h"
+
+namespace fovea::gpu {
+class Context;
+class Image;
+class Buffer;
+class MemoryBlock;
+class TimestampPool;
+}  // namespace fovea::gpu
+
+namespace fovea::graph {
+
+enum class PassStatus { Executed, Culled, Skipped, Cached, Bypassed };
+const char* passStatusName(PassStatus s);
+
+struct PassRecord {
+    PassStatus status = PassStatus::Executed;  // in the last frame
+    std::string reason;
+    std::vector<double> gpuMs;  // one entry per frame the pass ran (executed or bypassed)
+    uint64_t executions = 0;
+};
+
+struct FrameTiming {
+    double gpuMs = 0;          // first to last timestamp of the frame
+    double recordCpuMs = 0;    // CPU time recording the command buffer (all passes)
+    double passCpuMs = 0;      // of which inside Pass::execute
+    double submitWaitMs = 0;   // submit + wait for the fence
+};
+
+struct RuntimeResource;  // defined in RenderGraph.cpp
+
+class RenderGraph {
+public:
+    RenderGraph(gpu::Context& gpu, const PassRegistry& registry);
+    ~RenderGraph();
+
+    // Compiles `desc` with `options`, allocates and compiles every live pass. History rings whose
+    // producer, size, format and ring length are unchanged survive a rebuild (and stay valid,
+    // unless the size changed).
+    void build(const GraphDesc& desc, const CompileOptions& options);
+    void resize(uint32_t width, uint32_t height);  // rebuild at a new size; history invalid
+    void reset();  // history invalid (reset / camera cut); caches dropped
+
+    FrameTiming runFrame();
+
+    const CompiledPlan& plan() const { return mPlan; }
+    const GraphDesc& desc() const { return mDesc; }
+    const std::vector<PassRecord>& records() const { return mRecords; }  // per plan node
+    uint64_t frameIndex() const { return mFrame.index; }
+    uint64_t framesSinceReset() const { return mFrame.framesSinceReset; }
+    void setSeed(uint64_t seed) { mFrame.seed = seed; }
+
+    // The current content of an alive resource ("pass.field"), e.g. a marked output.
+    const gpu::Image& image(const std::string& resourceName) const;
+    // Bytes actually allocated on the device (after alignment), by lifetime class.
+    uint64_t allocatedTransientBytes() const { return mAllocatedTransient; }
+    uint64_t allocatedPersistentBytes() const { return mAllocatedPersistent; }
+    gpu::Context& gpu() { return mGpu; }
+
+    // Used by the contexts handed to passes.
+    const gpu::Image& imageFor(size_t node, const std::string& field) const;
+    const gpu::Buffer& bufferFor(size_t node, const std::string& field) const;
+    bool historyValidFor(size_t node, const std::string& input) const;
+    const gpu::Image& dummyImage(vk::Format format);
+
+private:
+    void allocate();
+    void compilePasses();
+    void recordPass(const vk::raii::CommandBuffer& cmd, size_t node, double& passCpuMs);
+    void recordBarrier(const vk::raii::CommandBuffer& cmd, const BarrierPlan* plan) const;
+    uint64_t cacheKey(size_t node) const;
+    size_t slotOf(const RuntimeResource& r, uint32_t delay) const;
+
+    gpu::Context& mGpu;
+    const PassRegistry& mRegistry;
+    GraphDesc mDesc;
+    CompiledPlan mPlan;
+    std::vector<PassRecord> mRecords;
+    std::vector<std::unique_ptr<RuntimeResource>> mResources;  // parallel to mPlan.resources
+    std::map<std::string, std::unique_ptr<RuntimeResource>> mKeptHistory;  // across rebuilds
+    std::vector<std::shared_ptr<gpu::MemoryBlock>> mBlocks;
+    std::map<vk::Format, std::unique_ptr<gpu::Image>> mDummies;
+    std::vector<uint64_t> mLastCacheKey;  // per node; 0 = never ran
+    std::unique_ptr<gpu::TimestampPool> mTimestamps;
+    std::unique_ptr<vk::raii::CommandPool> mCommandPool;
+    std::unique_ptr<vk::raii::CommandBuffer> mCommandBuffer;
+    std::unique_ptr<vk::raii::Fence> mFence;
+    FrameInfo mFrame;
+    uint64_t mAllocatedTransient = 0, mAllocatedPersistent = 0;
+};
+
+}  // namespace fovea::graph

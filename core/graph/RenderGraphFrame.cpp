@@ -1,0 +1,175 @@
+// Frame execution of a RenderGraph: barriers, bypass, caching, timestamps.
+#include <chrono>
+
+#include "core/graph/GraphContexts.h"
+#include "core/graph/RenderGraph.h"
+#include "core/graph/RuntimeResource.h"
+#include "core/util/Error.h"
+#include "core/vk/Context.h"
+#include "core/vk/Resources.h"
+#include "core/vk/Timestamps.h"
+
+namespace fovea::graph {
+
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+// Everything the graph does is compute or transfer; one access mask covers both directions.
+constexpr vk::PipelineStageFlags2 kStages =
+    vk::PipelineStageFlagBits2::eComputeShader | vk::PipelineStageFlagBits2::eTransfer;
+constexpr vk::AccessFlags2 kAccess =
+    vk::AccessFlagBits2::eShaderRead | vk::AccessFlagBits2::eShaderWrite |
+    vk::AccessFlagBits2::eTransferRead | vk::AccessFlagBits2::eTransferWrite;
+
+uint64_t mix(uint64_t h, uint64_t v) {  // FNV-1a style combine
+    h ^= v + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+    return h * 1099511628211ull;
+}
+}  // namespace
+
+void RenderGraph::recordBarrier(const vk::raii::CommandBuffer& cmd,
+                                const BarrierPlan* plan) const {
+    vk::MemoryBarrier2 memory{.srcStageMask = kStages,
+                              .srcAccessMask = kAccess,
+                              .dstStageMask = kStages,
+                              .dstAccessMask = kAccess};
+    std::vector<vk::ImageMemoryBarrier2> images;
+    if (plan)
+        for (size_t r : plan->initialize)
+            for (const auto& img : mResources[r]->ring)
+                images.push_back(vk::ImageMemoryBarrier2{
+                    .srcStageMask = kStages,
+                    .srcAccessMask = kAccess,
+                    .dstStageMask = kStages,
+                    .dstAccessMask = kAccess,
+                    .oldLayout = vk::ImageLayout::eUndefined,
+                    .newLayout = vk::ImageLayout::eGeneral,
+                    .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                    .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                    .image = img->image(),
+                    .subresourceRange = {vk::ImageAspectFlagBits::eColor, 0, 1, 0, 1}});
+    cmd.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1,
+                                            .pMemoryBarriers = &memory,
+                                            .imageMemoryBarrierCount = uint32_t(images.size()),
+                                            .pImageMemoryBarriers = images.data()});
+}
+
+uint64_t RenderGraph::cacheKey(size_t node) const {
+    const PassNode& n = mPlan.nodes[node];
+    uint64_t h = 1469598103934665603ull;
+    for (char c : saveParams(*n.pass, false).dump()) h = mix(h, uint8_t(c));
+    for (const auto& [key, src] : mPlan.inputs) {
+        if (key.first != node) continue;
+        h = mix(h, mResources[src.resource]->version);
+        h = mix(h, src.delay);
+    }
+    return h == 0 ? 1 : h;  // 0 means "never ran"
+}
+
+void RenderGraph::recordPass(const vk::raii::CommandBuffer& cmd, size_t n, double& passCpuMs) {
+    PassNode& node = mPlan.nodes[n];
+    PassRecord& record = mRecords[n];
+    auto bumpOutputs = [&] {
+        for (const auto& f : node.reflection.fields())
+            if (f.kind != FieldKind::Input) ++mResources[mPlan.resourceOf.at({n, f.name})]->version;
+    };
+    if (!node.pass->isActive(mFrame)) {
+        auto pairs = node.pass->bypass();
+        if (pairs.empty()) {
+            record.status = PassStatus::Skipped;
+            record.reason = "inactive this frame; outputs keep their previous content";
+            return;
+        }
+        for (const auto& [input, output] : pairs) {
+            const gpu::Image& dst = imageFor(n, output);
+            if (mPlan.inputs.count({n, input})) {
+                const gpu::Image& src = imageFor(n, input);
+                vk::ImageCopy region{.srcSubresource = {vk::ImageAspectFlagBits::eColor, 0, 0, 1},
+                                     .dstSubresource = {vk::ImageAspectFlagBits::eColor, 0, 0, 1},
+                                     .extent = {dst.width(), dst.height(), 1}};
+                cmd.copyImage(src.image(), vk::ImageLayout::eGeneral, dst.image(),
+                              vk::ImageLayout::eGeneral, region);
+            } else {
+                dst.recordClear(cmd, {0, 0, 0, 0});
+            }
+        }
+        bumpOutputs();
+        record.status = PassStatus::Bypassed;
+        record.reason = "inactive this frame; bypass copies its input";
+        return;
+    }
+    bool hasHistoryOutput = false;
+    for (const auto& f : node.reflection.fields())
+        if (f.kind != FieldKind::Input &&
+            mPlan.resources[mPlan.resourceOf.at({n, f.name})].lifetime == Lifetime::History)
+            hasHistoryOutput = true;
+    if (node.pass->cacheable() && !hasHistoryOutput) {
+        uint64_t key = cacheKey(n);
+        if (key == mLastCacheKey[n]) {
+            record.status = PassStatus::Cached;
+            record.reason = "inputs and parameters unchanged since its last run";
+            return;
+        }
+        mLastCacheKey[n] = key;
+    }
+    GraphExecuteContext ctx(*this, mPlan, n, cmd, mFrame);
+    auto t0 = Clock::now();
+    node.pass->execute(ctx);
+    passCpuMs += msSince(t0);
+    bumpOutputs();
+    record.status = PassStatus::Executed;
+    record.reason.clear();
+    ++record.executions;
+}
+
+FrameTiming RenderGraph::runFrame() {
+    FrameTiming timing;
+    const auto& cmd = *mCommandBuffer;
+    auto t0 = Clock::now();
+    cmd.reset();
+    cmd.begin(vk::CommandBufferBeginInfo{
+        .flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+    mTimestamps->reset(cmd);
+    // The previous frame (and any upload) is ordered before this one by a full barrier.
+    recordBarrier(cmd, nullptr);
+    size_t nextBarrier = 0;
+    for (size_t pos = 0; pos < mPlan.order.size(); ++pos) {
+        if (nextBarrier < mPlan.barriers.size() && mPlan.barriers[nextBarrier].position == int(pos))
+            recordBarrier(cmd, &mPlan.barriers[nextBarrier++]);
+        mTimestamps->write(cmd, uint32_t(2 * pos));
+        recordPass(cmd, mPlan.order[pos], timing.passCpuMs);
+        mTimestamps->write(cmd, uint32_t(2 * pos + 1));
+    }
+    // Make the frame's writes visible to whatever reads them next (readback, next frame).
+    recordBarrier(cmd, nullptr);
+    cmd.end();
+    timing.recordCpuMs = msSince(t0);
+
+    auto t1 = Clock::now();
+    vk::CommandBuffer raw = *cmd;
+    mGpu.queue().submit(vk::SubmitInfo{.commandBufferCount = 1, .pCommandBuffers = &raw},
+                        **mFence);
+    if (mGpu.device().waitForFences(**mFence, VK_TRUE, UINT64_MAX) != vk::Result::eSuccess)
+        throw RuntimeError("waiting for the frame's fence failed");
+    mGpu.device().resetFences(**mFence);
+    timing.submitWaitMs = msSince(t1);
+
+    if (!mPlan.order.empty()) {
+        auto ticks = mTimestamps->readTicks(uint32_t(2 * mPlan.order.size()));
+        timing.gpuMs = mTimestamps->ticksToMs(ticks.back() - ticks.front());
+        for (size_t pos = 0; pos < mPlan.order.size(); ++pos) {
+            PassRecord& r = mRecords[mPlan.order[pos]];
+            if (r.status == PassStatus::Executed || r.status == PassStatus::Bypassed)
+                r.gpuMs.push_back(mTimestamps->ticksToMs(ticks[2 * pos + 1] - ticks[2 * pos]));
+        }
+    }
+    ++mFrame.index;
+    ++mFrame.framesSinceReset;
+    return timing;
+}
+
+}  // namespace fovea::graph

@@ -1,0 +1,18 @@
+// The device side of one plan resource (private to RenderGraph*.cpp).
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/vk/Resources.h"
+
+namespace fovea::graph {
+
+struct RuntimeResource {
+    std::string key;  // identity for keeping history rings across rebuilds
+    std::vector<std::unique_ptr<gpu::Image>> ring;  // 1 image, or delay+1 for history
+    std::unique_ptr<gpu::Buffer> buffer;
+    uint64_t version = 0;  // bumped whenever the producer writes it (drives caching)
+};
+
+}  // namespace fovea::graph

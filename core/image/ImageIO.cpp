@@ -1,0 +1,69 @@
+#include "core/image/ImageIO.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/util/Error.h"
+
+namespace fovea::image {
+
+namespace {
+
+void writeWith(const std::filesystem::path& path, uint32_t w, uint32_t h, OIIO::TypeDesc type,
+               const void* data) {
+    auto out = OIIO::ImageOutput::create(path.string());
+    if (!out) throw RuntimeError(path.string() + ": cannot create image: " + OIIO::geterror());
+    OIIO::ImageSpec spec(int(w), int(h), 4, type);
+    if (!out->open(path.string(), spec) || !out->write_image(type, data) || !out->close())
+        throw RuntimeError(path.string() + ": cannot write image: " + out->geterror());
+}
+
+float srgbEncode(float c) {
+    c = std::clamp(std::isfinite(c) ? c : 0.0f, 0.0f, 1.0f);
+    return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+}  // namespace
+
+void writeExr(const std::filesystem::path& path, const ImageRGBA& image) {
+    writeWith(path, image.width, image.height, OIIO::TypeDesc::FLOAT, image.pixels.data());
+}
+
+void writePng(const std::filesystem::path& path, const ImageRGBA& image) {
+    std::vector<uint8_t> bytes(image.pixels.size());
+    for (size_t i = 0; i < bytes.size(); ++i) {
+        bool alpha = i % 4 == 3;
+        float v = alpha ? std::clamp(image.pixels[i], 0.0f, 1.0f) : srgbEncode(image.pixels[i]);
+        if (!std::isfinite(v)) v = 0.0f;
+        bytes[i] = uint8_t(std::lround(v * 255.0f));
+    }
+    writeWith(path, image.width, image.height, OIIO::TypeDesc::UINT8, bytes.data());
+}
+
+ImageRGBA readImage(const std::filesystem::path& path) {
+    auto in = OIIO::ImageInput::open(path.string());
+    if (!in) throw InputError(path.string(), "", "cannot read image: " + OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+        throw InputError(path.string(), "", "image has no pixels");
+    ImageRGBA image;
+    image.width = uint32_t(spec.width);
+    image.height = uint32_t(spec.height);
+    const int channels = spec.nchannels;
+    std::vector<float> raw(size_t(spec.width) * spec.height * channels);
+    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, raw.data()))
+        throw InputError(path.string(), "", "cannot decode image: " + in->geterror());
+    image.pixels.assign(size_t(image.width) * image.height * 4, 0.0f);
+    for (size_t p = 0; p < size_t(image.width) * image.height; ++p) {
+        for (int c = 0; c < 4; ++c) {
+            float v = c < channels ? raw[p * channels + c] : (c == 3 ? 1.0f : 0.0f);
+            if (channels == 1 && c < 3) v = raw[p];  // grey: replicate
+            image.pixels[p * 4 + c] = v;
+        }
+    }
+    return image;
+}
+
+}  // namespace fovea::image

@@ -1,0 +1,45 @@
+#include "passes/Accumulate/AccumulatePass.h"
+
+#include "core/vk/ComputePipeline.h"
+
+namespace fovea::passes {
+
+void AccumulatePass::params(graph::ParamVisitor& v) {
+    v.add("maxFrames", mMaxFrames, 0,
+          "stop accumulating after this many frames (0 = never stop); the mean then stays",
+          {0, 1 << 30});
+}
+
+void AccumulatePass::reflect(graph::Reflection& r) const {
+    r.input("color").doc("the frame to accumulate, any float format");
+    r.output("mean", vk::Format::eR32G32B32A32Sfloat)
+        .sameAs("color")
+        .persistent()
+        .doc("running mean of every finite sample since the last reset");
+    r.internal("count", vk::Format::eR32Sfloat)
+        .sameAs("color")
+        .persistent()
+        .doc("per-pixel number of finite samples");
+}
+
+void AccumulatePass::compile(graph::CompileContext& ctx) {
+    mPipeline = ctx.createPipeline("accumulate/accumulate.comp");
+}
+
+bool AccumulatePass::isActive(const graph::FrameInfo& frame) const {
+    // After a reset the count restarts even if onReset was not called (fresh graph).
+    int count = frame.framesSinceReset == 0 ? 0 : mCount;
+    return mMaxFrames == 0 || count < mMaxFrames;
+}
+
+void AccumulatePass::execute(graph::ExecuteContext& ctx) {
+    bool restart = ctx.frame().framesSinceReset == 0 || mCount == 0;
+    if (ctx.frame().framesSinceReset == 0) mCount = 0;
+    ++mCount;
+    const auto& out = ctx.image("mean");
+    ctx.bindFields(*mPipeline);
+    mPipeline->set("size", glm::ivec2(out.width(), out.height())).set("restart", int(restart));
+    mPipeline->dispatch(ctx.cmd(), out.width(), out.height());
+}
+
+}  // namespace fovea::passes
