@@ -217,7 +217,8 @@ void planBarriers(CompiledPlan& plan) {
         for (const auto& [key, src] : plan.inputs) {
             if (key.first != n || src.delay > 0) continue;
             int writer = plan.positionOf(src.node);
-            if (writer > lastBarrier && writer < pos)
+            // A barrier at position p sits before pass p, so it covers writers at positions < p.
+            if (writer >= lastBarrier && writer < pos)
                 b.hazards.push_back("RAW " + plan.nodes[n].name + "." + key.second + " <- " +
                                     plan.resources[src.resource].name);
         }

@@ -12,6 +12,8 @@
 
 #include "core/graph/Param.h"
 #include "core/graph/Reflection.h"
+#include "core/vk/ComputePipeline.h"
+#include "core/vk/Resources.h"
 
 namespace fovea::gpu {
 class Context;

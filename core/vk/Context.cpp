@@ -96,8 +96,9 @@ std::string unsuitableReason(const vk::raii::PhysicalDevice& pd) {
         return "no VK_KHR_push_descriptor";
     if (!pickQueueFamily(pd)) return "no compute queue";
     auto features = pd.getFeatures2<vk::PhysicalDeviceFeatures2, vk::PhysicalDeviceVulkan13Features>();
-    if (!features.get<vk::PhysicalDeviceVulkan13Features>().synchronization2)
-        return "no synchronization2";
+    const auto& f13 = features.get<vk::PhysicalDeviceVulkan13Features>();
+    if (!f13.synchronization2) return "no synchronization2";
+    if (!f13.maintenance4) return "no maintenance4";
     return "";
 }
 
@@ -241,8 +242,12 @@ Context::Context(const ContextOptions& options)
                                         .ppEnabledExtensionNames = extensions.data()};
     if (mValidation) {
         // Chained into instance creation too, so messages from vkCreate/DestroyInstance count.
+        // The messenger info goes last: it is reused below, where its pNext must be null.
         instanceInfo.pNext = &messengerInfo;
-        if (mSyncValidation) messengerInfo.pNext = &validationFeatures;
+        if (mSyncValidation) {
+            instanceInfo.pNext = &validationFeatures;
+            validationFeatures.pNext = &messengerInfo;
+        }
     }
     try {
         mInstance = vk::raii::Instance(mVkContext, instanceInfo);
@@ -269,7 +274,8 @@ Context::Context(const ContextOptions& options)
     const auto& s11 = supported.get<vk::PhysicalDeviceVulkan11Features>();
     const auto& s12 = supported.get<vk::PhysicalDeviceVulkan12Features>();
 
-    // Only features that are both useful to passes and supported; sync2 is checked by selection.
+    // Only features that are both useful to passes and supported; sync2 and maintenance4 are
+    // required by device selection.
     vk::StructureChain<vk::DeviceCreateInfo, vk::PhysicalDeviceFeatures2,
                        vk::PhysicalDeviceVulkan11Features, vk::PhysicalDeviceVulkan12Features,
                        vk::PhysicalDeviceVulkan13Features>
@@ -293,7 +299,11 @@ Context::Context(const ContextOptions& options)
     f12.scalarBlockLayout = s12.scalarBlockLayout;
     f12.hostQueryReset = s12.hostQueryReset;
     f12.timelineSemaphore = s12.timelineSemaphore;
-    chain.get<vk::PhysicalDeviceVulkan13Features>().synchronization2 = VK_TRUE;
+    auto& f13 = chain.get<vk::PhysicalDeviceVulkan13Features>();
+    f13.synchronization2 = VK_TRUE;
+    // glslang's SPIR-V 1.6 output declares the workgroup size with LocalSizeId, which needs
+    // maintenance4 (mandatory in Vulkan 1.3; device selection checks it).
+    f13.maintenance4 = VK_TRUE;
 
     mFeatures = DeviceFeatures{
         .shaderFloat16 = bool(f12.shaderFloat16),

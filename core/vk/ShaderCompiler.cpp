@@ -264,7 +264,7 @@ std::string ShaderCompiler::displayName(const fs::path& absolutePath) const {
 std::string ShaderCompiler::compilerVersion() {
     return std::string("glslang ") + std::to_string(GLSLANG_VERSION_MAJOR) + "." +
            std::to_string(GLSLANG_VERSION_MINOR) + "." + std::to_string(GLSLANG_VERSION_PATCH) +
-           GLSLANG_VERSION_FLAVOR + " glsl460 vulkan1.3 spirv1.6 " + kCacheFormat;
+           GLSLANG_VERSION_FLAVOR + " glsl460 vulkan1.3 spirv1.6 automap " + kCacheFormat;
 }
 
 fs::path ShaderCompiler::resolve(const std::string& path) const {
@@ -337,6 +337,10 @@ std::vector<uint32_t> ShaderCompiler::compileUncached(const fs::path& file, cons
     shader.setEnvInput(glslang::EShSourceGlsl, *stage, glslang::EShClientVulkan, 100);
     shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_3);
     shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_6);
+    // Resources without layout(binding = N) get the next free binding: passes bind by name, so
+    // shader authors need not number them (same as glslangValidator --amb).
+    shader.setAutoMapBindings(true);
+    shader.setAutoMapLocations(true);
     const auto messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules);
     FileIncluder includer(*this, file);
     if (!shader.parse(GetDefaultResources(), 460, ENoProfile, false, false, messages, includer)) {
@@ -344,7 +348,8 @@ std::vector<uint32_t> ShaderCompiler::compileUncached(const fs::path& file, cons
     }
     glslang::TProgram program;
     program.addShader(&shader);
-    if (!program.link(messages)) throw RuntimeError(formatLog(program.getInfoLog(), name));
+    if (!program.link(messages) || !program.mapIO())
+        throw RuntimeError(formatLog(program.getInfoLog(), name));
 
     std::vector<uint32_t> spirv;
     spv::SpvBuildLogger logger;

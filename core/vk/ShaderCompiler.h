@@ -26,7 +26,8 @@ public:
     // `path` is relative to the shader root ("tonemap/tonemap.comp") or absolute; the stage comes
     // from the extension (.comp, .vert, .frag). `#include "x"` resolves relative to the including
     // file, then the shader root; `#include <x>` only from the root. GLSL 460 -> SPIR-V 1.6 for
-    // Vulkan 1.3. Throws RuntimeError whose message holds one "shaders/x/y.comp:LINE: error" line
+    // Vulkan 1.3; GL_GOOGLE_include_directive is pre-enabled; resources without an explicit
+    // layout(binding = N) are numbered automatically (set 0). Throws RuntimeError whose message holds one "shaders/x/y.comp:LINE: error" line
     // per glslang error (also for a missing file or include). Thread-safe.
     std::vector<uint32_t> compile(const std::string& path, const ShaderDefines& defines = {});
 

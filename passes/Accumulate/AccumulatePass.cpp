@@ -11,7 +11,8 @@ void AccumulatePass::params(graph::ParamVisitor& v) {
 }
 
 void AccumulatePass::reflect(graph::Reflection& r) const {
-    r.input("color").doc("the frame to accumulate, any float format");
+    // rgba32f only: accumulating 8-bit data would quantize the reference (Blit converts).
+    r.input("color", vk::Format::eR32G32B32A32Sfloat).doc("the frame to accumulate");
     r.output("mean", vk::Format::eR32G32B32A32Sfloat)
         .sameAs("color")
         .persistent()

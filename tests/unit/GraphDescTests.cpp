@@ -2,6 +2,7 @@
 // Every bad-input class has a file in tests/graph/bad/parse/ with a NAME.expect sidecar holding
 // the message fragment; BadGraphFiles checks them all.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>

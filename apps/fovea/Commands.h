@@ -1,0 +1,63 @@
+// Subcommands of the `fovea` executable. Each returns the process exit code:
+// 0 ok, 1 runtime failure, 2 bad input or usage.
+#pragma once
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/graph/GraphDesc.h"
+
+namespace fovea::app {
+
+constexpr int kExitOk = 0;
+constexpr int kExitRuntime = 1;
+constexpr int kExitInput = 2;
+
+struct GraphOptions {
+    std::string graph;
+    std::string size;  // "WxH", empty = graph default
+    std::vector<std::string> sets;  // pass.param=value
+    bool noAliasing = false;
+};
+
+struct RunOptions {
+    GraphOptions graph;
+    std::string scene = "none";
+    int frames = 0;  // 0 = graph default (or 1)
+    int64_t seed = -1;  // -1 = graph default (or 0)
+    std::string out;
+    std::string saveFrames = "last";
+    std::string device;
+    bool validation = false;
+    bool overwrite = false;
+    bool quiet = false;
+};
+
+void addRunCommand(CLI::App& app, RunOptions& options);
+int runCommand(const RunOptions& options);
+
+struct ValidateOptions {
+    GraphOptions graph;
+    bool dump = false;
+    bool json = false;
+};
+void addValidateCommand(CLI::App& app, ValidateOptions& options);
+int validateCommand(const ValidateOptions& options);
+
+struct PassesOptions {
+    bool json = false;
+    std::string type;
+};
+void addPassesCommand(CLI::App& app, PassesOptions& options);
+int passesCommand(const PassesOptions& options);
+
+// Shared by run/validate/bench: parse the graph file and apply --set overrides (each checked
+// against the pass's declared parameters, errors naming the flag).
+graph::GraphDesc loadGraph(const GraphOptions& options);
+// "256x128" -> {256, 128}; errors name `flag`.
+std::array<uint32_t, 2> parseSize(const std::string& text, const std::string& flag);
+// Render size from --size or the graph's defaults (256x256 when neither gives one).
+std::array<uint32_t, 2> renderSize(const GraphOptions& options, const graph::GraphDesc& desc);
+
+}  // namespace fovea::app

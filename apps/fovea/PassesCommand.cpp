@@ -1,0 +1,90 @@
+// `fovea passes`: every pass type with its fields, formats and parameters (docs from the one
+// ParamVisitor declaration).
+#include <iostream>
+
+#include "apps/fovea/Commands.h"
+#include "core/graph/PassRegistry.h"
+#include "core/util/DidYouMean.h"
+#include "core/util/Error.h"
+#include "core/vk/Formats.h"
+
+namespace fovea::app {
+
+void addPassesCommand(CLI::App& app, PassesOptions& o) {
+    auto* cmd = app.add_subcommand("passes", "list pass types, their fields and parameters");
+    cmd->add_option("type", o.type, "show only this pass type");
+    cmd->add_flag("--json", o.json, "machine-readable output");
+}
+
+namespace {
+
+nlohmann::json describePass(const graph::PassTypeInfo& info) {
+    auto pass = info.create();
+    pass->setIdentity(info.type, info.type);
+    graph::applyParamDefaults(*pass);
+    graph::Reflection r;
+    pass->reflect(r);
+    nlohmann::json fields = nlohmann::json::array();
+    for (const auto& f : r.fields()) {
+        nlohmann::json jf = {{"name", f.name},
+                             {"kind", graph::fieldKindName(f.kind)},
+                             {"format", f.format == vk::Format::eUndefined
+                                            ? "any"
+                                            : gpu::formatName(f.format)},
+                             {"size", graph::sizeRuleName(f.size)},
+                             {"optional", f.optional},
+                             {"persistent", f.persistent},
+                             {"doc", f.doc}};
+        if (f.size == graph::SizeRule::SameAsInput) jf["same_as"] = f.sameAs;
+        if (f.size == graph::SizeRule::Scaled) jf["scale"] = f.scale;
+        fields.push_back(jf);
+    }
+    return {{"type", info.type},
+            {"doc", info.doc},
+            {"fields", fields},
+            {"params", graph::describeParams(*pass)},
+            {"scene_needs", graph::sceneFeatureNames(pass->sceneNeeds())},
+            {"cacheable", pass->cacheable()},
+            {"bypass", pass->bypass()}};
+}
+
+}  // namespace
+
+int passesCommand(const PassesOptions& o) {
+    const auto& registry = graph::passRegistry();
+    std::vector<std::string> types = registry.types();
+    if (!o.type.empty()) {
+        if (!registry.find(o.type))
+            throw InputError("fovea passes", "", "unknown pass type '" + o.type + "'" +
+                                                     didYouMean(o.type, types));
+        types = {o.type};
+    }
+    nlohmann::json all = nlohmann::json::array();
+    for (const auto& t : types) all.push_back(describePass(*registry.find(t)));
+    if (o.json) {
+        std::cout << all.dump(2) << "\n";
+        return kExitOk;
+    }
+    for (const auto& p : all) {
+        std::cout << p["type"].get<std::string>() << " — " << p["doc"].get<std::string>() << "\n";
+        for (const auto& f : p["fields"])
+            std::cout << "    " << f["kind"].get<std::string>() << " " << f["name"].get<std::string>()
+                      << "  [" << f["format"].get<std::string>() << ", "
+                      << f["size"].get<std::string>()
+                      << (f["optional"].get<bool>() ? ", optional" : "")
+                      << (f["persistent"].get<bool>() ? ", persistent" : "") << "]  "
+                      << f["doc"].get<std::string>() << "\n";
+        for (const auto& q : p["params"]) {
+            std::cout << "    param " << q["name"].get<std::string>() << " ("
+                      << q["type"].get<std::string>() << ", default " << q["default"].dump();
+            if (q.contains("min")) std::cout << ", min " << q["min"].dump();
+            if (q.contains("max")) std::cout << ", max " << q["max"].dump();
+            if (q.contains("choices")) std::cout << ", one of " << q["choices"].dump();
+            std::cout << ")  " << q["doc"].get<std::string>() << "\n";
+        }
+        std::cout << "\n";
+    }
+    return kExitOk;
+}
+
+}  // namespace fovea::app

@@ -1,0 +1,61 @@
+#include "apps/fovea/Report.h"
+
+#include <algorithm>
+
+namespace fovea::app {
+
+Stats computeStats(std::vector<double> values) {
+    Stats s;
+    if (values.empty()) return s;
+    std::sort(values.begin(), values.end());
+    double sum = 0;
+    for (double v : values) sum += v;
+    s.mean = sum / double(values.size());  // size >= 1 here
+    size_t mid = values.size() / 2;
+    s.median = values.size() % 2 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
+    s.min = values.front();
+    s.max = values.back();
+    return s;
+}
+
+nlohmann::json statsJson(const Stats& s) {
+    return {{"mean", s.mean}, {"median", s.median}, {"min", s.min}, {"max", s.max}};
+}
+
+nlohmann::json buildReport(const graph::RenderGraph& graph, const ReportInputs& in) {
+    using nlohmann::json;
+    const auto& plan = graph.plan();
+    json passes = json::array();
+    for (size_t n = 0; n < plan.nodes.size(); ++n) {
+        const auto& node = plan.nodes[n];
+        const auto& rec = graph.records()[n];
+        json p = {{"name", node.name},
+                  {"type", node.type},
+                  {"status", graph::passStatusName(rec.status)},
+                  {"reason", rec.reason},
+                  {"executions", rec.executions},
+                  {"gpu_ms", statsJson(computeStats(rec.gpuMs))}};
+        passes.push_back(p);
+    }
+    return {{"report_version", kReportSchemaVersion},
+            {"fovea_version", FOVEA_VERSION},
+            {"graph", in.graphFile},
+            {"scene", in.scene},
+            {"device", {{"name", in.deviceName}, {"driver", in.driver}}},
+            {"size", {in.width, in.height}},
+            {"frames", in.frames},
+            {"seed", in.seed},
+            {"passes", passes},
+            {"memory",
+             {{"transient_bytes", plan.transientBytes()},
+              {"transient_bytes_without_aliasing", plan.transientBytesWithoutAliasing()},
+              {"persistent_bytes", plan.persistentBytes()},
+              {"allocated_transient_bytes", graph.allocatedTransientBytes()},
+              {"allocated_persistent_bytes", graph.allocatedPersistentBytes()}}},
+            {"frame_ms", statsJson(computeStats(in.frameGpuMs))},
+            {"frame_cpu_ms", statsJson(computeStats(in.frameCpuMs))},
+            {"executor_overhead_cpu_ms", statsJson(computeStats(in.overheadCpuMs))},
+            {"outputs", in.outputs}};
+}
+
+}  // namespace fovea::app

@@ -1,0 +1,28 @@
+// report.json: the stable, documented record of a run (docs/report-format.md).
+#pragma once
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "core/graph/RenderGraph.h"
+
+namespace fovea::app {
+
+struct Stats {
+    double mean = 0, median = 0, min = 0, max = 0;
+};
+Stats computeStats(std::vector<double> values);
+nlohmann::json statsJson(const Stats& s);
+
+struct ReportInputs {
+    std::string graphFile, scene, deviceName, driver;
+    uint32_t width = 0, height = 0, frames = 0;
+    uint64_t seed = 0;
+    std::vector<double> frameGpuMs, frameCpuMs, overheadCpuMs;
+    std::vector<std::string> outputs;  // written files, relative to the out dir
+};
+
+constexpr int kReportSchemaVersion = 1;
+nlohmann::json buildReport(const graph::RenderGraph& graph, const ReportInputs& in);
+
+}  // namespace fovea::app
