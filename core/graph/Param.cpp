@@ -1,6 +1,7 @@
 #include "core/graph/Param.h"
 
 #include <cmath>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -56,7 +57,10 @@ public:
             if (!j->is_number_integer())
                 fail(s.name, "expected an integer, got " + describe(*j));
             // Compare as double first so values beyond int range are reported, not wrapped.
-            checkRange(s, j->get<double>());
+            double d = j->get<double>();
+            checkRange(s, d);
+            checkLimits(s, d, double(std::numeric_limits<int>::min()),
+                        double(std::numeric_limits<int>::max()));
             v = j->get<int>();
         }
     }
@@ -66,6 +70,8 @@ public:
             double d = j->get<double>();
             if (!std::isfinite(d)) fail(s.name, "expected a finite number");
             checkRange(s, d);
+            checkLimits(s, d, -double(std::numeric_limits<float>::max()),
+                        double(std::numeric_limits<float>::max()));
             v = static_cast<float>(d);
         }
     }
@@ -95,6 +101,8 @@ public:
                 double d = (*j)[i].get<double>();
                 if (!std::isfinite(d)) fail(s.name, "expected finite numbers");
                 checkRange(s, d);
+                checkLimits(s, d, -double(std::numeric_limits<float>::max()),
+                            double(std::numeric_limits<float>::max()));
                 out[i] = static_cast<float>(d);
             }
             v = out;
@@ -132,6 +140,13 @@ private:
         if (d < s.range.min || d > s.range.max)
             fail(s.name, "out of range: " + formatNumber(d) + " (allowed " +
                              formatNumber(s.range.min) + ".." + formatNumber(s.range.max) + ")");
+    }
+    // The representable range of the C++ type, for parameters that declare no tighter range:
+    // a value that would wrap (int) or become infinite (float) must not load silently.
+    void checkLimits(const ParamSpec& s, double d, double lo, double hi) const {
+        if (d < lo || d > hi)
+            fail(s.name, "out of range: " + formatNumber(d) + " (allowed " + formatNumber(lo) +
+                             ".." + formatNumber(hi) + ")");
     }
     [[noreturn]] void fail(const std::string& name, const std::string& message) const {
         throw InputError(mFile, mPointer + "/" + name, message);

@@ -57,11 +57,11 @@ ComputePipeline::ComputePipeline(Context& context, const std::string& shaderPath
         if (b.arraySize != 1)
             throw RuntimeError(label() + ": resource '" + b.name +
                                "' is a descriptor array, which fovea cannot bind");
-        layoutBindings.push_back(vk::DescriptorSetLayoutBinding{
-            .binding = b.binding,
-            .descriptorType = descriptorType(b.kind),
-            .descriptorCount = 1,
-            .stageFlags = vk::ShaderStageFlagBits::eCompute});
+        layoutBindings.push_back(
+            vk::DescriptorSetLayoutBinding{.binding = b.binding,
+                                           .descriptorType = descriptorType(b.kind),
+                                           .descriptorCount = 1,
+                                           .stageFlags = vk::ShaderStageFlagBits::eCompute});
     }
     const auto& device = context.device();
     mSetLayout = vk::raii::DescriptorSetLayout(
@@ -86,9 +86,10 @@ ComputePipeline::ComputePipeline(Context& context, const std::string& shaderPath
         mPipeline = vk::raii::Pipeline(
             device, nullptr,
             vk::ComputePipelineCreateInfo{
-                .stage = vk::PipelineShaderStageCreateInfo{.stage = vk::ShaderStageFlagBits::eCompute,
-                                                           .module = *module,
-                                                           .pName = "main"},
+                .stage =
+                    vk::PipelineShaderStageCreateInfo{.stage = vk::ShaderStageFlagBits::eCompute,
+                                                      .module = *module,
+                                                      .pName = "main"},
                 .layout = *mLayout});
     } catch (const vk::SystemError& e) {
         throw RuntimeError(label() + ": pipeline creation failed: " + e.what());
@@ -120,8 +121,8 @@ ComputePipeline& ComputePipeline::bindImage(std::string_view name, const Image& 
     const ShaderBinding& b = mInterface.bindings[index];
     const std::string where = label() + " resource '" + b.name + "'";
     if (b.kind != DescriptorKind::StorageImage && b.kind != DescriptorKind::SampledImage)
-        throw RuntimeError(where + " is a " + descriptorKindName(b.kind) + "; bind a Buffer, not image '" +
-                           imageName(image) + "'");
+        throw RuntimeError(where + " is a " + descriptorKindName(b.kind) +
+                           "; bind a Buffer, not image '" + imageName(image) + "'");
     vk::Sampler sampler = nullptr;
     if (b.kind == DescriptorKind::StorageImage) {
         if (nearest)
@@ -129,13 +130,15 @@ ComputePipeline& ComputePipeline::bindImage(std::string_view name, const Image& 
         if (!(image.desc().usage & vk::ImageUsageFlagBits::eStorage))
             throw RuntimeError(where + ": image '" + imageName(image) + "' lacks storage usage");
         if (b.imageFormat != vk::Format::eUndefined && b.imageFormat != image.format())
-            throw RuntimeError(where + " is declared " + formatName(b.imageFormat) + " but image '" +
-                               imageName(image) + "' is " + formatName(image.format()));
+            throw RuntimeError(where + " is declared " + formatName(b.imageFormat) +
+                               " but image '" + imageName(image) + "' is " +
+                               formatName(image.format()));
     } else {
         if (!(image.desc().usage & vk::ImageUsageFlagBits::eSampled))
             throw RuntimeError(where + ": image '" + imageName(image) + "' lacks sampled usage");
         // Linear filtering of a format that does not support it is invalid (e.g. uint formats).
-        auto features = mContext.physicalDevice().getFormatProperties(image.format()).optimalTilingFeatures;
+        auto features =
+            mContext.physicalDevice().getFormatProperties(image.format()).optimalTilingFeatures;
         bool linearOk = bool(features & vk::FormatFeatureFlagBits::eSampledImageFilterLinear);
         sampler = (nearest || !linearOk) ? *mContext.nearestClampSampler()
                                          : *mContext.linearClampSampler();
@@ -162,7 +165,8 @@ ComputePipeline& ComputePipeline::bind(std::string_view name, const Buffer& buff
                            " usage");
     Staged& s = mStaged[index];
     s.bound = true;
-    s.buffer = vk::DescriptorBufferInfo{.buffer = buffer.buffer(), .offset = 0, .range = VK_WHOLE_SIZE};
+    s.buffer =
+        vk::DescriptorBufferInfo{.buffer = buffer.buffer(), .offset = 0, .range = VK_WHOLE_SIZE};
     return *this;
 }
 
@@ -182,9 +186,9 @@ ComputePipeline& ComputePipeline::setBytes(std::string_view member, const void* 
         throw RuntimeError(where + " was set with a " + std::to_string(size) + "-byte value");
     const bool memberFloat =
         startsWithAny(m->typeName, {"float", "vec", "mat", "f16", "double", "dvec", "dmat"});
-    const bool memberInteger =
-        startsWithAny(m->typeName, {"int", "uint", "ivec", "uvec", "bool", "bvec", "i8", "u8",
-                                    "i16", "u16", "i64", "u64"});
+    const bool memberInteger = startsWithAny(
+        m->typeName,
+        {"int", "uint", "ivec", "uvec", "bool", "bvec", "i8", "u8", "i16", "u16", "i64", "u64"});
     if ((valueClass == ScalarClass::Float && memberInteger) ||
         (valueClass == ScalarClass::Integer && memberFloat))
         throw RuntimeError(where + " was set with " +
@@ -211,12 +215,12 @@ void ComputePipeline::dispatch(const vk::raii::CommandBuffer& cmd, uint32_t thre
             throw RuntimeError(label() + " expects resource '" + b.name + "' but none was bound");
         const bool isImage =
             b.kind == DescriptorKind::StorageImage || b.kind == DescriptorKind::SampledImage;
-        writes.push_back(vk::WriteDescriptorSet{
-            .dstBinding = b.binding,
-            .descriptorCount = 1,
-            .descriptorType = descriptorType(b.kind),
-            .pImageInfo = isImage ? &mStaged[i].image : nullptr,
-            .pBufferInfo = isImage ? nullptr : &mStaged[i].buffer});
+        writes.push_back(
+            vk::WriteDescriptorSet{.dstBinding = b.binding,
+                                   .descriptorCount = 1,
+                                   .descriptorType = descriptorType(b.kind),
+                                   .pImageInfo = isImage ? &mStaged[i].image : nullptr,
+                                   .pBufferInfo = isImage ? nullptr : &mStaged[i].buffer});
     }
     const auto groups = groupCount(threadsX, threadsY, threadsZ);
     const auto& maxGroups = mContext.limits().maxComputeWorkGroupCount;

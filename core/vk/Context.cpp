@@ -16,15 +16,12 @@ namespace {
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
 constexpr uint32_t kApiVersion = VK_API_VERSION_1_3;
 
-bool envFlag(const char* name) {
+// Env switches: unset -> nullopt; "0", "false" or "" -> false; anything else -> true.
+std::optional<bool> envSwitch(const char* name) {
     const char* value = std::getenv(name);
-    return value && std::string(value) != "0" && std::string(value) != "" &&
-           std::string(value) != "false";
-}
-
-bool envFlagIsZero(const char* name) {
-    const char* value = std::getenv(name);
-    return value && (std::string(value) == "0" || std::string(value) == "false");
+    if (!value) return std::nullopt;
+    const std::string v = value;
+    return !(v.empty() || v == "0" || v == "false");
 }
 
 std::string lower(std::string s) {
@@ -35,22 +32,32 @@ std::string lower(std::string s) {
 
 std::string typeName(vk::PhysicalDeviceType type) {
     switch (type) {
-        case vk::PhysicalDeviceType::eCpu: return "cpu";
-        case vk::PhysicalDeviceType::eDiscreteGpu: return "discrete";
-        case vk::PhysicalDeviceType::eIntegratedGpu: return "integrated";
-        case vk::PhysicalDeviceType::eVirtualGpu: return "virtual";
-        default: return "other";
+        case vk::PhysicalDeviceType::eCpu:
+            return "cpu";
+        case vk::PhysicalDeviceType::eDiscreteGpu:
+            return "discrete";
+        case vk::PhysicalDeviceType::eIntegratedGpu:
+            return "integrated";
+        case vk::PhysicalDeviceType::eVirtualGpu:
+            return "virtual";
+        default:
+            return "other";
     }
 }
 
 // Lower is preferred by the default device choice.
 int typeRank(vk::PhysicalDeviceType type) {
     switch (type) {
-        case vk::PhysicalDeviceType::eDiscreteGpu: return 0;
-        case vk::PhysicalDeviceType::eIntegratedGpu: return 1;
-        case vk::PhysicalDeviceType::eVirtualGpu: return 2;
-        case vk::PhysicalDeviceType::eCpu: return 3;
-        default: return 4;
+        case vk::PhysicalDeviceType::eDiscreteGpu:
+            return 0;
+        case vk::PhysicalDeviceType::eIntegratedGpu:
+            return 1;
+        case vk::PhysicalDeviceType::eVirtualGpu:
+            return 2;
+        case vk::PhysicalDeviceType::eCpu:
+            return 3;
+        default:
+            return 4;
     }
 }
 
@@ -92,10 +99,12 @@ std::optional<uint32_t> pickQueueFamily(const vk::raii::PhysicalDevice& pd) {
 std::string unsuitableReason(const vk::raii::PhysicalDevice& pd) {
     auto props = pd.getProperties();
     if (props.apiVersion < kApiVersion) return "needs Vulkan 1.3";
-    if (!hasExtension(pd.enumerateDeviceExtensionProperties(), VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME))
+    if (!hasExtension(pd.enumerateDeviceExtensionProperties(),
+                      VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME))
         return "no VK_KHR_push_descriptor";
     if (!pickQueueFamily(pd)) return "no compute queue";
-    auto features = pd.getFeatures2<vk::PhysicalDeviceFeatures2, vk::PhysicalDeviceVulkan13Features>();
+    auto features =
+        pd.getFeatures2<vk::PhysicalDeviceFeatures2, vk::PhysicalDeviceVulkan13Features>();
     const auto& f13 = features.get<vk::PhysicalDeviceVulkan13Features>();
     if (!f13.synchronization2) return "no synchronization2";
     if (!f13.maintenance4) return "no maintenance4";
@@ -112,7 +121,8 @@ std::string describe(size_t index, const vk::raii::PhysicalDevice& pd) {
 }
 
 bool allDigits(const std::string& s) {
-    return !s.empty() && std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c); });
+    return !s.empty() &&
+           std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c); });
 }
 
 std::string joinLines(const std::vector<std::string>& lines) {
@@ -126,7 +136,8 @@ vk::raii::PhysicalDevice selectDevice(const vk::raii::Instance& instance, const 
     vk::raii::PhysicalDevices devices(instance);
     std::vector<std::string> listing;
     for (size_t i = 0; i < devices.size(); ++i) listing.push_back(describe(i, devices[i]));
-    if (devices.empty()) throw RuntimeError("no Vulkan devices found (is a Vulkan driver installed?)");
+    if (devices.empty())
+        throw RuntimeError("no Vulkan devices found (is a Vulkan driver installed?)");
 
     auto fail = [&](const std::string& why) -> RuntimeError {
         return RuntimeError(why + "; available devices:" + joinLines(listing));
@@ -156,7 +167,8 @@ vk::raii::PhysicalDevice selectDevice(const vk::raii::Instance& instance, const 
         reason = unsuitableReason(devices[i]);
         if (reason.empty()) return std::move(devices[i]);
     }
-    if (!reason.empty()) throw fail("Vulkan device matching '" + spec + "' is unsuitable: " + reason);
+    if (!reason.empty())
+        throw fail("Vulkan device matching '" + spec + "' is unsuitable: " + reason);
     throw fail("no Vulkan device matches '" + spec + "'");
 }
 
@@ -169,7 +181,7 @@ std::filesystem::path defaultShaderCacheDir() {
 
 vk::raii::Sampler makeSampler(const vk::raii::Device& device, vk::Filter filter) {
     vk::SamplerMipmapMode mip = filter == vk::Filter::eLinear ? vk::SamplerMipmapMode::eLinear
-                                                               : vk::SamplerMipmapMode::eNearest;
+                                                              : vk::SamplerMipmapMode::eNearest;
     return vk::raii::Sampler(device, vk::SamplerCreateInfo{
                                          .magFilter = filter,
                                          .minFilter = filter,
@@ -185,9 +197,11 @@ vk::raii::Sampler makeSampler(const vk::raii::Device& device, vk::Filter filter)
 
 Context::Context(const ContextOptions& options)
     : mSink(std::make_unique<MessageSink>()), mVkContext(makeLoaderContext()) {
-    mValidation = options.validation || options.syncValidation || envFlag("FOVEA_VALIDATION") ||
-                  envFlag("FOVEA_SYNC_VALIDATION");
-    mSyncValidation = mValidation && !envFlagIsZero("FOVEA_SYNC_VALIDATION");
+    const std::optional<bool> envValidation = envSwitch("FOVEA_VALIDATION");
+    const std::optional<bool> envSync = envSwitch("FOVEA_SYNC_VALIDATION");
+    mValidation = options.validation || options.syncValidation || envValidation.value_or(false) ||
+                  envSync.value_or(false);
+    mSyncValidation = mValidation && envSync.value_or(true);
 
     // --- instance ---
     std::vector<const char*> layers;
@@ -197,9 +211,10 @@ Context::Context(const ContextOptions& options)
     if (mDebugUtils) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     if (mValidation) {
         auto available = mVkContext.enumerateInstanceLayerProperties();
-        bool found = std::any_of(available.begin(), available.end(), [](const vk::LayerProperties& l) {
-            return std::string_view(l.layerName.data()) == kValidationLayer;
-        });
+        bool found =
+            std::any_of(available.begin(), available.end(), [](const vk::LayerProperties& l) {
+                return std::string_view(l.layerName.data()) == kValidationLayer;
+            });
         if (!found || !mDebugUtils) {
             // A missing layer should not stop a render; tests notice via validationEnabled().
             std::cerr << "fovea: warning: validation requested but " << kValidationLayer
@@ -208,8 +223,8 @@ Context::Context(const ContextOptions& options)
             mValidation = mSyncValidation = false;
         } else {
             layers.push_back(kValidationLayer);
-            auto layerExtensions = mVkContext.enumerateInstanceExtensionProperties(
-                std::string(kValidationLayer));
+            auto layerExtensions =
+                mVkContext.enumerateInstanceExtensionProperties(std::string(kValidationLayer));
             if (mSyncValidation &&
                 hasExtension(layerExtensions, VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME))
                 extensions.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
@@ -234,12 +249,12 @@ Context::Context(const ContextOptions& options)
         vk::ValidationFeatureEnableEXT::eSynchronizationValidation;
     vk::ValidationFeaturesEXT validationFeatures{.enabledValidationFeatureCount = 1,
                                                  .pEnabledValidationFeatures = &syncFeature};
-    vk::InstanceCreateInfo instanceInfo{.pApplicationInfo = &appInfo,
-                                        .enabledLayerCount = static_cast<uint32_t>(layers.size()),
-                                        .ppEnabledLayerNames = layers.data(),
-                                        .enabledExtensionCount =
-                                            static_cast<uint32_t>(extensions.size()),
-                                        .ppEnabledExtensionNames = extensions.data()};
+    vk::InstanceCreateInfo instanceInfo{
+        .pApplicationInfo = &appInfo,
+        .enabledLayerCount = static_cast<uint32_t>(layers.size()),
+        .ppEnabledLayerNames = layers.data(),
+        .enabledExtensionCount = static_cast<uint32_t>(extensions.size()),
+        .ppEnabledExtensionNames = extensions.data()};
     if (mValidation) {
         // Chained into instance creation too, so messages from vkCreate/DestroyInstance count.
         // The messenger info goes last: it is reused below, where its pNext must be null.
@@ -259,17 +274,18 @@ Context::Context(const ContextOptions& options)
     // --- device ---
     mPhysicalDevice = selectDevice(mInstance, options.device);
     mProperties = mPhysicalDevice.getProperties();
-    auto props2 = mPhysicalDevice.getProperties2<vk::PhysicalDeviceProperties2,
-                                                 vk::PhysicalDeviceDriverProperties>();
+    auto props2 =
+        mPhysicalDevice
+            .getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceDriverProperties>();
     const auto& driver = props2.get<vk::PhysicalDeviceDriverProperties>();
     mDriverName = driver.driverName.data();
     mDriverInfo = driver.driverInfo.data();
     mQueueFamily = *pickQueueFamily(mPhysicalDevice);
 
-    auto supported = mPhysicalDevice.getFeatures2<vk::PhysicalDeviceFeatures2,
-                                                  vk::PhysicalDeviceVulkan11Features,
-                                                  vk::PhysicalDeviceVulkan12Features,
-                                                  vk::PhysicalDeviceVulkan13Features>();
+    auto supported =
+        mPhysicalDevice
+            .getFeatures2<vk::PhysicalDeviceFeatures2, vk::PhysicalDeviceVulkan11Features,
+                          vk::PhysicalDeviceVulkan12Features, vk::PhysicalDeviceVulkan13Features>();
     const auto& s10 = supported.get<vk::PhysicalDeviceFeatures2>().features;
     const auto& s11 = supported.get<vk::PhysicalDeviceVulkan11Features>();
     const auto& s12 = supported.get<vk::PhysicalDeviceVulkan12Features>();
@@ -335,9 +351,10 @@ Context::Context(const ContextOptions& options)
     }
     mQueue = vk::raii::Queue(mDevice, mQueueFamily, 0);
     mCommandPool = vk::raii::CommandPool(
-        mDevice, vk::CommandPoolCreateInfo{.flags = vk::CommandPoolCreateFlagBits::eTransient |
-                                                    vk::CommandPoolCreateFlagBits::eResetCommandBuffer,
-                                           .queueFamilyIndex = mQueueFamily});
+        mDevice,
+        vk::CommandPoolCreateInfo{.flags = vk::CommandPoolCreateFlagBits::eTransient |
+                                           vk::CommandPoolCreateFlagBits::eResetCommandBuffer,
+                                  .queueFamilyIndex = mQueueFamily});
     mLinearClamp = makeSampler(mDevice, vk::Filter::eLinear);
     mNearestClamp = makeSampler(mDevice, vk::Filter::eNearest);
     setObjectName(*mLinearClamp, "linearClampSampler");
@@ -364,15 +381,20 @@ std::vector<std::string> Context::listDevices() {
     return out;
 }
 
-std::string Context::deviceName() const { return mProperties.deviceName.data(); }
+std::string Context::deviceName() const {
+    return mProperties.deviceName.data();
+}
 
-std::string Context::deviceTypeName() const { return typeName(mProperties.deviceType); }
+std::string Context::deviceTypeName() const {
+    return typeName(mProperties.deviceType);
+}
 
 VKAPI_ATTR VkBool32 VKAPI_CALL Context::onDebugMessage(
     VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT /*types*/,
     const VkDebugUtilsMessengerCallbackDataEXT* data, void* userData) {
     auto* sink = static_cast<MessageSink*>(userData);
-    std::string text = (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) ? "ERROR" : "WARNING";
+    std::string text =
+        (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) ? "ERROR" : "WARNING";
     text += ": ";
     if (data->pMessageIdName) text += std::string(data->pMessageIdName) + ": ";
     if (data->pMessage) text += data->pMessage;
@@ -423,14 +445,16 @@ void Context::submit(const vk::SubmitInfo2& info, vk::Fence fence) const {
     try {
         mQueue.submit2(info, fence);
     } catch (const vk::SystemError& e) {
-        throw RuntimeError(std::string("vkQueueSubmit2 failed on '") + deviceName() + "': " + e.what());
+        throw RuntimeError(std::string("vkQueueSubmit2 failed on '") + deviceName() +
+                           "': " + e.what());
     }
 }
 
 uint32_t Context::findMemoryType(uint32_t typeBits, vk::MemoryPropertyFlags props) const {
     auto memory = mPhysicalDevice.getMemoryProperties();
     for (uint32_t i = 0; i < memory.memoryTypeCount; ++i) {
-        if ((typeBits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & props) == props) return i;
+        if ((typeBits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & props) == props)
+            return i;
     }
     throw RuntimeError("no Vulkan memory type with " + vk::to_string(props) + " among type bits " +
                        std::to_string(typeBits) + " on '" + deviceName() + "'");
@@ -438,8 +462,8 @@ uint32_t Context::findMemoryType(uint32_t typeBits, vk::MemoryPropertyFlags prop
 
 void Context::setObjectName(vk::ObjectType type, uint64_t handle, const std::string& name) const {
     if (!mDebugUtils || name.empty() || handle == 0) return;
-    mDevice.setDebugUtilsObjectNameEXT(
-        vk::DebugUtilsObjectNameInfoEXT{.objectType = type, .objectHandle = handle, .pObjectName = name.c_str()});
+    mDevice.setDebugUtilsObjectNameEXT(vk::DebugUtilsObjectNameInfoEXT{
+        .objectType = type, .objectHandle = handle, .pObjectName = name.c_str()});
 }
 
 }  // namespace fovea::gpu

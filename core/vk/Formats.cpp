@@ -67,12 +67,20 @@ std::vector<std::string> formatNames() {
     return names;
 }
 
-uint32_t formatBytesPerPixel(vk::Format format) { return require(format).bytesPerPixel; }
+uint32_t formatBytesPerPixel(vk::Format format) {
+    return require(format).bytesPerPixel;
+}
 
-uint32_t formatChannels(vk::Format format) { return require(format).channels; }
+uint32_t formatChannels(vk::Format format) {
+    return require(format).channels;
+}
 
-bool formatIsUint(vk::Format format) { return require(format).isUint; }
+bool formatIsUint(vk::Format format) {
+    return require(format).isUint;
+}
 
-std::string glslFormatQualifier(vk::Format format) { return require(format).name; }
+std::string glslFormatQualifier(vk::Format format) {
+    return require(format).name;
+}
 
 }  // namespace fovea::gpu

@@ -1,9 +1,8 @@
 #include "core/vk/Resources.h"
 
-#include <glm/gtc/packing.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <glm/gtc/packing.hpp>
 
 #include "core/util/Error.h"
 #include "core/vk/Context.h"
@@ -31,8 +30,8 @@ vk::ImageCreateInfo imageInfo(const ImageDesc& desc) {
 }
 
 std::string imageLabel(const ImageDesc& desc) {
-    return "image '" + (desc.debugName.empty() ? std::string("<unnamed>") : desc.debugName) + "' (" +
-           std::to_string(desc.width) + "x" + std::to_string(desc.height) + " " +
+    return "image '" + (desc.debugName.empty() ? std::string("<unnamed>") : desc.debugName) +
+           "' (" + std::to_string(desc.width) + "x" + std::to_string(desc.height) + " " +
            formatName(desc.format) + ")";
 }
 
@@ -56,7 +55,8 @@ void checkImageSupport(const Context& context, const ImageDesc& desc) {
     }
     auto limit = context.limits().maxImageDimension2D;
     if (desc.width > limit || desc.height > limit)
-        throw RuntimeError(imageLabel(desc) + ": larger than the device limit " + std::to_string(limit));
+        throw RuntimeError(imageLabel(desc) + ": larger than the device limit " +
+                           std::to_string(limit));
 }
 
 vk::raii::DeviceMemory allocate(const Context& context, vk::DeviceSize size, uint32_t typeBits,
@@ -64,9 +64,9 @@ vk::raii::DeviceMemory allocate(const Context& context, vk::DeviceSize size, uin
                                 const void* pNext = nullptr) {
     uint32_t type = context.findMemoryType(typeBits, props);
     try {
-        return vk::raii::DeviceMemory(context.device(), vk::MemoryAllocateInfo{.pNext = pNext,
-                                                                            .allocationSize = size,
-                                                                            .memoryTypeIndex = type});
+        return vk::raii::DeviceMemory(
+            context.device(), vk::MemoryAllocateInfo{
+                                  .pNext = pNext, .allocationSize = size, .memoryTypeIndex = type});
     } catch (const vk::SystemError& e) {
         throw RuntimeError("cannot allocate " + std::to_string(size) + " bytes for " + what + ": " +
                            e.what());
@@ -106,13 +106,17 @@ Component componentOf(vk::Format format) {
     switch (format) {
         case vk::Format::eR16G16B16A16Sfloat:
         case vk::Format::eR16G16Sfloat:
-        case vk::Format::eR16Sfloat: return Component::F16;
+        case vk::Format::eR16Sfloat:
+            return Component::F16;
         case vk::Format::eR8G8B8A8Unorm:
-        case vk::Format::eR8Unorm: return Component::Unorm8;
+        case vk::Format::eR8Unorm:
+            return Component::Unorm8;
         case vk::Format::eR32Uint:
         case vk::Format::eR32G32Uint:
-        case vk::Format::eR32G32B32A32Uint: return Component::U32;
-        default: return Component::F32;
+        case vk::Format::eR32G32B32A32Uint:
+            return Component::U32;
+        default:
+            return Component::F32;
     }
 }
 
@@ -128,7 +132,8 @@ float readComponent(const std::byte* p, Component c) {
             std::memcpy(&v, p, 2);
             return glm::unpackHalf1x16(v);
         }
-        case Component::Unorm8: return static_cast<float>(std::to_integer<uint8_t>(*p)) / 255.0f;
+        case Component::Unorm8:
+            return static_cast<float>(std::to_integer<uint8_t>(*p)) / 255.0f;
         case Component::U32: {
             uint32_t v;
             std::memcpy(&v, p, 4);
@@ -140,7 +145,9 @@ float readComponent(const std::byte* p, Component c) {
 
 void writeComponent(std::byte* p, Component c, float value) {
     switch (c) {
-        case Component::F32: std::memcpy(p, &value, 4); break;
+        case Component::F32:
+            std::memcpy(p, &value, 4);
+            break;
         case Component::F16: {
             uint16_t v = glm::packHalf1x16(value);
             std::memcpy(p, &v, 2);
@@ -195,8 +202,8 @@ Image::Image(const Context& context, const ImageDesc& desc) : mDesc(desc) {
     create(context);
     vk::MemoryRequirements req = mImage.getMemoryRequirements();
     mAllocationSize = req.size;
-    mMemory = allocate(context, req.size, req.memoryTypeBits, vk::MemoryPropertyFlagBits::eDeviceLocal,
-                       imageLabel(mDesc));
+    mMemory = allocate(context, req.size, req.memoryTypeBits,
+                       vk::MemoryPropertyFlagBits::eDeviceLocal, imageLabel(mDesc));
     context.setObjectName(*mMemory, mDesc.debugName);
     mImage.bindMemory(*mMemory, 0);
     mView = vk::raii::ImageView(context.device(),
@@ -266,7 +273,8 @@ std::vector<std::byte> Image::download(const Context& context) const {
     Buffer staging(context, bytes, vk::BufferUsageFlagBits::eTransferDst, true, "download staging");
     context.submitAndWait([&](const vk::raii::CommandBuffer& cmd) {
         imageBarrier(cmd, *mImage, vk::ImageLayout::eGeneral, vk::ImageLayout::eGeneral,
-                     Stage::eAllCommands, Access::eMemoryWrite, Stage::eCopy, Access::eTransferRead);
+                     Stage::eAllCommands, Access::eMemoryWrite, Stage::eCopy,
+                     Access::eTransferRead);
         vk::BufferImageCopy region{.imageSubresource = {vk::ImageAspectFlagBits::eColor, 0, 0, 1},
                                    .imageExtent = vk::Extent3D{mDesc.width, mDesc.height, 1}};
         cmd.copyImageToBuffer(*mImage, vk::ImageLayout::eGeneral, staging.buffer(), region);
@@ -300,8 +308,9 @@ std::vector<float> Image::downloadRGBA32F(const Context& context) const {
 void Image::uploadRGBA32F(const Context& context, const std::vector<float>& rgba) {
     const size_t pixels = size_t(mDesc.width) * mDesc.height;
     if (rgba.size() != pixels * 4)
-        throw RuntimeError(imageLabel(mDesc) + ": uploadRGBA32F got " + std::to_string(rgba.size()) +
-                           " floats, expected " + std::to_string(pixels * 4));
+        throw RuntimeError(imageLabel(mDesc) + ": uploadRGBA32F got " +
+                           std::to_string(rgba.size()) + " floats, expected " +
+                           std::to_string(pixels * 4));
     const uint32_t channels = formatChannels(mDesc.format);
     const Component component = componentOf(mDesc.format);
     const uint32_t componentBytes = formatBytesPerPixel(mDesc.format) / channels;
@@ -337,9 +346,10 @@ Buffer::Buffer(const Context& context, vk::DeviceSize size, vk::BufferUsageFlags
     const std::string label = "buffer '" + (mDebugName.empty() ? "<unnamed>" : mDebugName) + "'";
     if (size == 0) throw RuntimeError(label + ": size must be at least 1 byte");
     try {
-        mBuffer = vk::raii::Buffer(context.device(), vk::BufferCreateInfo{.size = size,
-                                                                          .usage = usage,
-                                                                          .sharingMode = vk::SharingMode::eExclusive});
+        mBuffer = vk::raii::Buffer(
+            context.device(),
+            vk::BufferCreateInfo{
+                .size = size, .usage = usage, .sharingMode = vk::SharingMode::eExclusive});
     } catch (const vk::SystemError& e) {
         throw RuntimeError("cannot create " + label + ": " + e.what());
     }
@@ -351,12 +361,14 @@ Buffer::Buffer(const Context& context, vk::DeviceSize size, vk::BufferUsageFlags
     vk::MemoryPropertyFlags props = hostVisible ? vk::MemoryPropertyFlagBits::eHostVisible |
                                                       vk::MemoryPropertyFlagBits::eHostCoherent
                                                 : vk::MemoryPropertyFlagBits::eDeviceLocal;
-    mMemory = allocate(context, req.size, req.memoryTypeBits, props, label, wantAddress ? &flags : nullptr);
+    mMemory = allocate(context, req.size, req.memoryTypeBits, props, label,
+                       wantAddress ? &flags : nullptr);
     context.setObjectName(*mMemory, mDebugName);
     mBuffer.bindMemory(*mMemory, 0);
     if (hostVisible) mMapped = mMemory.mapMemory(0, VK_WHOLE_SIZE);
     if (wantAddress)
-        mAddress = context.device().getBufferAddress(vk::BufferDeviceAddressInfo{.buffer = *mBuffer});
+        mAddress =
+            context.device().getBufferAddress(vk::BufferDeviceAddressInfo{.buffer = *mBuffer});
 }
 
 void Buffer::upload(const Context& context, const void* data, size_t bytes, vk::DeviceSize offset) {

@@ -156,19 +156,18 @@ bool validIdentifier(const std::string& s) {
 }
 
 std::optional<EShLanguage> stageFor(const fs::path& file) {
-    static const std::map<std::string, EShLanguage> kStages{
-        {".comp", EShLangCompute}, {".vert", EShLangVertex}, {".frag", EShLangFragment}};
-    auto it = kStages.find(file.extension().string());
-    if (it == kStages.end()) return std::nullopt;
-    return it->second;
+    const std::string ext = file.extension().string();
+    if (ext == ".comp") return EShLangCompute;
+    if (ext == ".vert") return EShLangVertex;
+    if (ext == ".frag") return EShLangFragment;
+    return std::nullopt;
 }
 
 // Resolves includes for glslang. It owns every result it hands out (glslang's interface is raw
 // pointers), so releaseInclude has nothing to do and all memory goes with the includer.
 class FileIncluder : public glslang::TShader::Includer {
 public:
-    FileIncluder(const ShaderCompiler& compiler, const fs::path& mainFile)
-        : mCompiler(compiler) {
+    FileIncluder(const ShaderCompiler& compiler, const fs::path& mainFile) : mCompiler(compiler) {
         mFiles[compiler.displayName(mainFile)] = mainFile;
     }
     IncludeResult* includeLocal(const char* header, const char* includer, size_t) override {
@@ -187,10 +186,13 @@ private:
         if (!found) {
             // Local lookups fall through to includeSystem, which produces the one error.
             if (local) return nullptr;
-            std::string& why = mTexts.emplace_back(
-                "cannot find '" + std::string(header) + "' (looked next to the including file "
-                "and in " + mCompiler.shaderRoot().string() + ")");
-            return mResults.emplace_back(std::make_unique<IncludeResult>("", why.data(), why.size(), nullptr)).get();
+            std::string& why = mTexts.emplace_back("cannot find '" + std::string(header) +
+                                                   "' (looked next to the including file "
+                                                   "and in " +
+                                                   mCompiler.shaderRoot().string() + ")");
+            return mResults
+                .emplace_back(std::make_unique<IncludeResult>("", why.data(), why.size(), nullptr))
+                .get();
         }
         auto text = readText(*found);
         if (!text) return nullptr;
@@ -218,9 +220,12 @@ std::string formatLog(const std::string& log, const std::string& mainName) {
     while (std::getline(lines, line)) {
         if (line.rfind("ERROR: ", 0) != 0) continue;
         std::string body = line.substr(7);
-        if (body.find("compilation errors.  No code generated") != std::string::npos ||
-            body.find("compilation errors. No code generated") != std::string::npos)
+        // Summary lines repeat what the real errors already said.
+        if (body.find("No code generated") != std::string::npos ||
+            body.find("compilation terminated") != std::string::npos)
             continue;
+        while (!body.empty() && std::isspace(static_cast<unsigned char>(body.back())))
+            body.pop_back();
         size_t colon = body.find(':');
         bool located = colon != std::string::npos && colon + 1 < body.size() &&
                        std::isdigit(static_cast<unsigned char>(body[colon + 1]));
@@ -243,7 +248,9 @@ ShaderCompiler::ShaderCompiler(fs::path shaderRoot, fs::path cacheDir)
     }
 }
 
-ShaderCompiler::~ShaderCompiler() { glslang::FinalizeProcess(); }
+ShaderCompiler::~ShaderCompiler() {
+    glslang::FinalizeProcess();
+}
 
 size_t ShaderCompiler::cacheHits() const {
     std::lock_guard lock(mMutex);
@@ -272,7 +279,8 @@ fs::path ShaderCompiler::resolve(const std::string& path) const {
     return fs::weakly_canonical(p.is_absolute() ? p : mShaderRoot / p);
 }
 
-std::vector<uint32_t> ShaderCompiler::compile(const std::string& path, const ShaderDefines& defines) {
+std::vector<uint32_t> ShaderCompiler::compile(const std::string& path,
+                                              const ShaderDefines& defines) {
     fs::path file = resolve(path);
     std::string name = displayName(file);
     auto source = readText(file);
@@ -317,15 +325,18 @@ std::vector<uint32_t> ShaderCompiler::compile(const std::string& path, const Sha
     return spirv;
 }
 
-std::vector<uint32_t> ShaderCompiler::compileUncached(const fs::path& file, const std::string& source,
+std::vector<uint32_t> ShaderCompiler::compileUncached(const fs::path& file,
+                                                      const std::string& source,
                                                       const ShaderDefines& sortedDefines) const {
     const std::string name = displayName(file);
     auto stage = stageFor(file);
-    if (!stage) throw RuntimeError(name + ": unknown shader stage (expected .comp, .vert or .frag)");
+    if (!stage)
+        throw RuntimeError(name + ": unknown shader stage (expected .comp, .vert or .frag)");
 
     // The include extension is enabled here so shaders need not repeat it (same as shaderc).
     std::string preamble = "#extension GL_GOOGLE_include_directive : require\n";
-    for (const auto& [key, value] : sortedDefines) preamble += "#define " + key + " " + value + "\n";
+    for (const auto& [key, value] : sortedDefines)
+        preamble += "#define " + key + " " + value + "\n";
 
     glslang::TShader shader(*stage);
     const char* text = source.c_str();

@@ -27,8 +27,9 @@ public:
     // from the extension (.comp, .vert, .frag). `#include "x"` resolves relative to the including
     // file, then the shader root; `#include <x>` only from the root. GLSL 460 -> SPIR-V 1.6 for
     // Vulkan 1.3; GL_GOOGLE_include_directive is pre-enabled; resources without an explicit
-    // layout(binding = N) are numbered automatically (set 0). Throws RuntimeError whose message holds one "shaders/x/y.comp:LINE: error" line
-    // per glslang error (also for a missing file or include). Thread-safe.
+    // layout(binding = N) are numbered automatically (set 0). Throws RuntimeError whose message
+    // holds one "shaders/x/y.comp:LINE: error" line per glslang error (also for a missing file or
+    // include). Thread-safe.
     std::vector<uint32_t> compile(const std::string& path, const ShaderDefines& defines = {});
 
     // Hits count in-memory and disk cache hits; misses count real compilations.

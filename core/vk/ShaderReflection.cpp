@@ -31,25 +31,47 @@ std::string glslTypeName(spvc_compiler compiler, spvc_type_id typeId) {
             else
                 name = vectorName("float", "", n);
             break;
-        case SPVC_BASETYPE_FP16: name = vectorName("float16_t", "f16", n); break;
+        case SPVC_BASETYPE_FP16:
+            name = vectorName("float16_t", "f16", n);
+            break;
         case SPVC_BASETYPE_FP64:
             name = columns > 1 ? "dmat" + std::to_string(columns) : vectorName("double", "d", n);
             break;
-        case SPVC_BASETYPE_INT32: name = vectorName("int", "i", n); break;
-        case SPVC_BASETYPE_UINT32: name = vectorName("uint", "u", n); break;
-        case SPVC_BASETYPE_INT16: name = vectorName("int16_t", "i16", n); break;
-        case SPVC_BASETYPE_UINT16: name = vectorName("uint16_t", "u16", n); break;
-        case SPVC_BASETYPE_INT8: name = vectorName("int8_t", "i8", n); break;
-        case SPVC_BASETYPE_UINT8: name = vectorName("uint8_t", "u8", n); break;
-        case SPVC_BASETYPE_INT64: name = vectorName("int64_t", "i64", n); break;
-        case SPVC_BASETYPE_UINT64: name = vectorName("uint64_t", "u64", n); break;
-        case SPVC_BASETYPE_BOOLEAN: name = vectorName("bool", "b", n); break;
+        case SPVC_BASETYPE_INT32:
+            name = vectorName("int", "i", n);
+            break;
+        case SPVC_BASETYPE_UINT32:
+            name = vectorName("uint", "u", n);
+            break;
+        case SPVC_BASETYPE_INT16:
+            name = vectorName("int16_t", "i16", n);
+            break;
+        case SPVC_BASETYPE_UINT16:
+            name = vectorName("uint16_t", "u16", n);
+            break;
+        case SPVC_BASETYPE_INT8:
+            name = vectorName("int8_t", "i8", n);
+            break;
+        case SPVC_BASETYPE_UINT8:
+            name = vectorName("uint8_t", "u8", n);
+            break;
+        case SPVC_BASETYPE_INT64:
+            name = vectorName("int64_t", "i64", n);
+            break;
+        case SPVC_BASETYPE_UINT64:
+            name = vectorName("uint64_t", "u64", n);
+            break;
+        case SPVC_BASETYPE_BOOLEAN:
+            name = vectorName("bool", "b", n);
+            break;
         case SPVC_BASETYPE_STRUCT: {
             const char* s = spvc_compiler_get_name(compiler, spvc_type_get_base_type_id(type));
             name = s && *s ? s : "struct";
             break;
         }
-        default: name = "unknown"; break;
+        default:
+            name = "unknown";
+            break;
     }
     const uint32_t dims = spvc_type_get_num_array_dimensions(type);
     // SPIR-V lists the outermost dimension last; GLSL writes it first.
@@ -85,68 +107,118 @@ const spvc_reflected_resource* resourceList(spvc_resources resources, spvc_resou
 
 std::string descriptorKindName(DescriptorKind kind) {
     switch (kind) {
-        case DescriptorKind::StorageImage: return "storage image";
-        case DescriptorKind::SampledImage: return "sampled image";
-        case DescriptorKind::StorageBuffer: return "storage buffer";
-        case DescriptorKind::UniformBuffer: return "uniform buffer";
+        case DescriptorKind::StorageImage:
+            return "storage image";
+        case DescriptorKind::SampledImage:
+            return "sampled image";
+        case DescriptorKind::StorageBuffer:
+            return "storage buffer";
+        case DescriptorKind::UniformBuffer:
+            return "uniform buffer";
     }
     return "?";
 }
 
 vk::DescriptorType descriptorType(DescriptorKind kind) {
     switch (kind) {
-        case DescriptorKind::StorageImage: return vk::DescriptorType::eStorageImage;
-        case DescriptorKind::SampledImage: return vk::DescriptorType::eCombinedImageSampler;
-        case DescriptorKind::StorageBuffer: return vk::DescriptorType::eStorageBuffer;
-        case DescriptorKind::UniformBuffer: return vk::DescriptorType::eUniformBuffer;
+        case DescriptorKind::StorageImage:
+            return vk::DescriptorType::eStorageImage;
+        case DescriptorKind::SampledImage:
+            return vk::DescriptorType::eCombinedImageSampler;
+        case DescriptorKind::StorageBuffer:
+            return vk::DescriptorType::eStorageBuffer;
+        case DescriptorKind::UniformBuffer:
+            return vk::DescriptorType::eUniformBuffer;
     }
     return vk::DescriptorType::eStorageImage;
 }
 
 vk::Format formatFromSpirv(uint32_t f) {
     switch (static_cast<SpvImageFormat>(f)) {
-        case SpvImageFormatRgba32f: return vk::Format::eR32G32B32A32Sfloat;
-        case SpvImageFormatRgba16f: return vk::Format::eR16G16B16A16Sfloat;
-        case SpvImageFormatR32f: return vk::Format::eR32Sfloat;
-        case SpvImageFormatRgba8: return vk::Format::eR8G8B8A8Unorm;
-        case SpvImageFormatRgba8Snorm: return vk::Format::eR8G8B8A8Snorm;
-        case SpvImageFormatRg32f: return vk::Format::eR32G32Sfloat;
-        case SpvImageFormatRg16f: return vk::Format::eR16G16Sfloat;
-        case SpvImageFormatR11fG11fB10f: return vk::Format::eB10G11R11UfloatPack32;
-        case SpvImageFormatR16f: return vk::Format::eR16Sfloat;
-        case SpvImageFormatRgba16: return vk::Format::eR16G16B16A16Unorm;
-        case SpvImageFormatRgb10A2: return vk::Format::eA2B10G10R10UnormPack32;
-        case SpvImageFormatRg16: return vk::Format::eR16G16Unorm;
-        case SpvImageFormatRg8: return vk::Format::eR8G8Unorm;
-        case SpvImageFormatR16: return vk::Format::eR16Unorm;
-        case SpvImageFormatR8: return vk::Format::eR8Unorm;
-        case SpvImageFormatRgba16Snorm: return vk::Format::eR16G16B16A16Snorm;
-        case SpvImageFormatRg16Snorm: return vk::Format::eR16G16Snorm;
-        case SpvImageFormatRg8Snorm: return vk::Format::eR8G8Snorm;
-        case SpvImageFormatR16Snorm: return vk::Format::eR16Snorm;
-        case SpvImageFormatR8Snorm: return vk::Format::eR8Snorm;
-        case SpvImageFormatRgba32i: return vk::Format::eR32G32B32A32Sint;
-        case SpvImageFormatRgba16i: return vk::Format::eR16G16B16A16Sint;
-        case SpvImageFormatRgba8i: return vk::Format::eR8G8B8A8Sint;
-        case SpvImageFormatR32i: return vk::Format::eR32Sint;
-        case SpvImageFormatRg32i: return vk::Format::eR32G32Sint;
-        case SpvImageFormatRg16i: return vk::Format::eR16G16Sint;
-        case SpvImageFormatRg8i: return vk::Format::eR8G8Sint;
-        case SpvImageFormatR16i: return vk::Format::eR16Sint;
-        case SpvImageFormatR8i: return vk::Format::eR8Sint;
-        case SpvImageFormatRgba32ui: return vk::Format::eR32G32B32A32Uint;
-        case SpvImageFormatRgba16ui: return vk::Format::eR16G16B16A16Uint;
-        case SpvImageFormatRgba8ui: return vk::Format::eR8G8B8A8Uint;
-        case SpvImageFormatR32ui: return vk::Format::eR32Uint;
-        case SpvImageFormatRgb10a2ui: return vk::Format::eA2B10G10R10UintPack32;
-        case SpvImageFormatRg32ui: return vk::Format::eR32G32Uint;
-        case SpvImageFormatRg16ui: return vk::Format::eR16G16Uint;
-        case SpvImageFormatRg8ui: return vk::Format::eR8G8Uint;
-        case SpvImageFormatR16ui: return vk::Format::eR16Uint;
-        case SpvImageFormatR8ui: return vk::Format::eR8Uint;
-        case SpvImageFormatR64ui: return vk::Format::eR64Uint;
-        case SpvImageFormatR64i: return vk::Format::eR64Sint;
-        default: return vk::Format::eUndefined;
+        case SpvImageFormatRgba32f:
+            return vk::Format::eR32G32B32A32Sfloat;
+        case SpvImageFormatRgba16f:
+            return vk::Format::eR16G16B16A16Sfloat;
+        case SpvImageFormatR32f:
+            return vk::Format::eR32Sfloat;
+        case SpvImageFormatRgba8:
+            return vk::Format::eR8G8B8A8Unorm;
+        case SpvImageFormatRgba8Snorm:
+            return vk::Format::eR8G8B8A8Snorm;
+        case SpvImageFormatRg32f:
+            return vk::Format::eR32G32Sfloat;
+        case SpvImageFormatRg16f:
+            return vk::Format::eR16G16Sfloat;
+        case SpvImageFormatR11fG11fB10f:
+            return vk::Format::eB10G11R11UfloatPack32;
+        case SpvImageFormatR16f:
+            return vk::Format::eR16Sfloat;
+        case SpvImageFormatRgba16:
+            return vk::Format::eR16G16B16A16Unorm;
+        case SpvImageFormatRgb10A2:
+            return vk::Format::eA2B10G10R10UnormPack32;
+        case SpvImageFormatRg16:
+            return vk::Format::eR16G16Unorm;
+        case SpvImageFormatRg8:
+            return vk::Format::eR8G8Unorm;
+        case SpvImageFormatR16:
+            return vk::Format::eR16Unorm;
+        case SpvImageFormatR8:
+            return vk::Format::eR8Unorm;
+        case SpvImageFormatRgba16Snorm:
+            return vk::Format::eR16G16B16A16Snorm;
+        case SpvImageFormatRg16Snorm:
+            return vk::Format::eR16G16Snorm;
+        case SpvImageFormatRg8Snorm:
+            return vk::Format::eR8G8Snorm;
+        case SpvImageFormatR16Snorm:
+            return vk::Format::eR16Snorm;
+        case SpvImageFormatR8Snorm:
+            return vk::Format::eR8Snorm;
+        case SpvImageFormatRgba32i:
+            return vk::Format::eR32G32B32A32Sint;
+        case SpvImageFormatRgba16i:
+            return vk::Format::eR16G16B16A16Sint;
+        case SpvImageFormatRgba8i:
+            return vk::Format::eR8G8B8A8Sint;
+        case SpvImageFormatR32i:
+            return vk::Format::eR32Sint;
+        case SpvImageFormatRg32i:
+            return vk::Format::eR32G32Sint;
+        case SpvImageFormatRg16i:
+            return vk::Format::eR16G16Sint;
+        case SpvImageFormatRg8i:
+            return vk::Format::eR8G8Sint;
+        case SpvImageFormatR16i:
+            return vk::Format::eR16Sint;
+        case SpvImageFormatR8i:
+            return vk::Format::eR8Sint;
+        case SpvImageFormatRgba32ui:
+            return vk::Format::eR32G32B32A32Uint;
+        case SpvImageFormatRgba16ui:
+            return vk::Format::eR16G16B16A16Uint;
+        case SpvImageFormatRgba8ui:
+            return vk::Format::eR8G8B8A8Uint;
+        case SpvImageFormatR32ui:
+            return vk::Format::eR32Uint;
+        case SpvImageFormatRgb10a2ui:
+            return vk::Format::eA2B10G10R10UintPack32;
+        case SpvImageFormatRg32ui:
+            return vk::Format::eR32G32Uint;
+        case SpvImageFormatRg16ui:
+            return vk::Format::eR16G16Uint;
+        case SpvImageFormatRg8ui:
+            return vk::Format::eR8G8Uint;
+        case SpvImageFormatR16ui:
+            return vk::Format::eR16Uint;
+        case SpvImageFormatR8ui:
+            return vk::Format::eR8Uint;
+        case SpvImageFormatR64ui:
+            return vk::Format::eR64Uint;
+        case SpvImageFormatR64i:
+            return vk::Format::eR64Sint;
+        default:
+            return vk::Format::eUndefined;
     }
 }
 
@@ -228,9 +300,11 @@ ShaderInterface reflectShader(const std::vector<uint32_t>& spirv) {
                 }
                 b.readonly = b.readonly || kind == DescriptorKind::UniformBuffer;
             } else {
-                b.readonly = spvc_compiler_has_decoration(compiler, res.id, SpvDecorationNonWritable) ||
-                             kind == DescriptorKind::SampledImage;
-                b.writeonly = spvc_compiler_has_decoration(compiler, res.id, SpvDecorationNonReadable);
+                b.readonly =
+                    spvc_compiler_has_decoration(compiler, res.id, SpvDecorationNonWritable) ||
+                    kind == DescriptorKind::SampledImage;
+                b.writeonly =
+                    spvc_compiler_has_decoration(compiler, res.id, SpvDecorationNonReadable);
                 spvc_type type = spvc_compiler_get_type_handle(compiler, res.base_type_id);
                 if (spvc_type_get_image_dimension(type) == SpvDimBuffer)
                     throw RuntimeError("shader reflection: '" + b.name +
@@ -256,15 +330,17 @@ ShaderInterface reflectShader(const std::vector<uint32_t>& spirv) {
         size_t count = 0;
         const spvc_reflected_resource* list = resourceList(resources, type, count);
         if (count > 0)
-            throw RuntimeError("shader reflection: '" + std::string(list[0].name ? list[0].name : "") +
-                               "' is a " + what + ", which fovea cannot bind");
+            throw RuntimeError("shader reflection: '" +
+                               std::string(list[0].name ? list[0].name : "") + "' is a " + what +
+                               ", which fovea cannot bind");
     }
     std::sort(out.bindings.begin(), out.bindings.end(), [](const auto& a, const auto& b) {
         return std::tie(a.set, a.binding) < std::tie(b.set, b.binding);
     });
 
     size_t pushCount = 0;
-    const spvc_reflected_resource* push = resourceList(resources, SPVC_RESOURCE_TYPE_PUSH_CONSTANT, pushCount);
+    const spvc_reflected_resource* push =
+        resourceList(resources, SPVC_RESOURCE_TYPE_PUSH_CONSTANT, pushCount);
     if (pushCount > 0) {
         spvc_type block = spvc_compiler_get_type_handle(compiler, push[0].base_type_id);
         size_t blockSize = 0;

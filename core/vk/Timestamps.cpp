@@ -11,22 +11,27 @@ TimestampPool::TimestampPool(const Context& context, uint32_t capacity)
     auto families = context.physicalDevice().getQueueFamilyProperties();
     const uint32_t bits = families.at(context.queueFamily()).timestampValidBits;
     if (bits == 0)
-        throw RuntimeError("'" + context.deviceName() + "' cannot write timestamps on its compute queue");
+        throw RuntimeError("'" + context.deviceName() +
+                           "' cannot write timestamps on its compute queue");
     mValidMask = bits >= 64 ? ~0ull : ((1ull << bits) - 1);
-    mPool = vk::raii::QueryPool(context.device(),
-                                vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp,
-                                                        .queryCount = capacity});
+    mPool = vk::raii::QueryPool(
+        context.device(),
+        vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = capacity});
 }
 
 void TimestampPool::reset(const vk::raii::CommandBuffer& cmd) {
     cmd.resetQueryPool(*mPool, 0, mCapacity);
+    mRecorded.assign(mCapacity, false);
 }
 
 void TimestampPool::write(const vk::raii::CommandBuffer& cmd, uint32_t index) {
     if (index >= mCapacity)
         throw RuntimeError("timestamp index " + std::to_string(index) + " out of range (capacity " +
                            std::to_string(mCapacity) + ")");
+    if (mRecorded.empty())
+        throw RuntimeError("timestamp pool: reset() must be recorded before write()");
     cmd.writeTimestamp2(vk::PipelineStageFlagBits2::eAllCommands, *mPool, index);
+    mRecorded[index] = true;
 }
 
 std::vector<uint64_t> TimestampPool::readTicks(uint32_t count) const {
@@ -34,9 +39,13 @@ std::vector<uint64_t> TimestampPool::readTicks(uint32_t count) const {
         throw RuntimeError("reading " + std::to_string(count) + " timestamps from a pool of " +
                            std::to_string(mCapacity));
     if (count == 0) return {};
-    auto [result, ticks] = mPool.getResults<uint64_t>(
-        0, count, count * sizeof(uint64_t), sizeof(uint64_t),
-        vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
+    for (uint32_t i = 0; i < count; ++i)
+        if (mRecorded.empty() || !mRecorded[i])
+            throw RuntimeError("timestamp " + std::to_string(i) +
+                               " was not written since the pool was last reset");
+    auto [result, ticks] =
+        mPool.getResults<uint64_t>(0, count, count * sizeof(uint64_t), sizeof(uint64_t),
+                                   vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
     if (result != vk::Result::eSuccess)
         throw RuntimeError("timestamp query results not available: " + vk::to_string(result));
     for (auto& t : ticks) t &= mValidMask;

@@ -17,7 +17,9 @@
 namespace fovea::test {
 
 // The repository's shaders/ folder.
-inline std::filesystem::path shaderRoot() { return FOVEA_SHADER_DIR; }
+inline std::filesystem::path shaderRoot() {
+    return FOVEA_SHADER_DIR;
+}
 
 // Created on first use (validation on), destroyed at process exit.
 inline gpu::Context& sharedGpuContext() {
@@ -27,7 +29,8 @@ inline gpu::Context& sharedGpuContext() {
         options.validation = true;
         context = std::make_unique<gpu::Context>(options);
         if (!context->validationEnabled())
-            std::cerr << "GpuTest: WARNING: validation layer unavailable, GPU tests run without it\n";
+            std::cerr
+                << "GpuTest: WARNING: validation layer unavailable, GPU tests run without it\n";
     }
     return *context;
 }

@@ -86,7 +86,8 @@ TEST_F(ShaderTest, EveryShaderCompilesAndReflects) {
 TEST(ShaderCompiler, IncludesResolveRelativeThenRoot) {
     TempDir dir;
     fs::path root = dir.path() / "shaders";
-    dir.write("shaders/common/a.glsl", "#include \"b.glsl\"\nfloat fromA() { return fromB() + 1.0; }\n");
+    dir.write("shaders/common/a.glsl",
+              "#include \"b.glsl\"\nfloat fromA() { return fromB() + 1.0; }\n");
     dir.write("shaders/common/b.glsl", "float fromB() { return 2.0; }\n");
     dir.write("shaders/pass/local.glsl", "float fromLocal() { return 4.0; }\n");
     // "common/a.glsl" is not next to x.comp, so it comes from the root; a.glsl's "b.glsl"
@@ -119,10 +120,17 @@ void main() { imageStore(img, ivec2(0), vec4(fromB())); }
 TEST(ShaderCompiler, ErrorsNameFileAndLine) {
     TempDir dir;
     fs::path root = dir.path() / "shaders";
-    dir.write("shaders/bad.comp", "#version 460\nlayout(local_size_x = 1) in;\nvoid main() {\n    float x = undefinedThing;\n}\n");
-    dir.write("shaders/common/broken.glsl", "float ok() { return 1.0; }\nfloat broken() { return nope; }\n");
-    dir.write("shaders/uses_broken.comp", "#version 460\n#include \"common/broken.glsl\"\nlayout(local_size_x = 1) in;\nvoid main() {}\n");
-    dir.write("shaders/missing_include.comp", "#version 460\n\n#include \"common/nothere.glsl\"\nlayout(local_size_x = 1) in;\nvoid main() {}\n");
+    dir.write("shaders/bad.comp",
+              "#version 460\nlayout(local_size_x = 1) in;\nvoid main() {\n    float x = "
+              "undefinedThing;\n}\n");
+    dir.write("shaders/common/broken.glsl",
+              "float ok() { return 1.0; }\nfloat broken() { return nope; }\n");
+    dir.write("shaders/uses_broken.comp",
+              "#version 460\n#include \"common/broken.glsl\"\nlayout(local_size_x = 1) in;\nvoid "
+              "main() {}\n");
+    dir.write("shaders/missing_include.comp",
+              "#version 460\n\n#include \"common/nothere.glsl\"\nlayout(local_size_x = 1) "
+              "in;\nvoid main() {}\n");
     ShaderCompiler compiler(root);
 
     std::string e = compileError(compiler, "bad.comp");
@@ -274,8 +282,9 @@ void main() { imageStore(img, ivec2(0), uvec4(pc.m[0][0] + pc.v3.x + pc.arr[1].x
     ShaderInterface r = reflectShader(compiler.compile("types.comp"));
     std::vector<std::pair<std::string, std::string>> got;
     for (const auto& m : r.pushConstants) got.emplace_back(m.name, m.typeName);
-    std::vector<std::pair<std::string, std::string>> want{
-        {"m", "mat4"}, {"i2", "ivec2"}, {"u2", "uvec2"}, {"v3", "vec3"}, {"i", "int"}, {"arr", "vec4[2]"}};
+    std::vector<std::pair<std::string, std::string>> want{{"m", "mat4"},   {"i2", "ivec2"},
+                                                          {"u2", "uvec2"}, {"v3", "vec3"},
+                                                          {"i", "int"},    {"arr", "vec4[2]"}};
     EXPECT_EQ(got, want);
     EXPECT_EQ(r.findPushConstant("m")->size, 64u);
     EXPECT_EQ(r.findPushConstant("i")->offset, 92u);  // packed after the 12-byte vec3

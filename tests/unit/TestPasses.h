@@ -102,9 +102,7 @@ public:
 class NeedsScene : public TestPass {
 public:
     void reflect(graph::Reflection& r) const override { r.output("color", kRgba32f).screen(); }
-    uint32_t sceneNeeds() const override {
-        return graph::kSceneGeometry | graph::kSceneEmissive;
-    }
+    uint32_t sceneNeeds() const override { return graph::kSceneGeometry | graph::kSceneEmissive; }
 };
 
 // output `buf`: a 4096-byte storage buffer.
