@@ -37,6 +37,8 @@ std::unique_ptr<gpu::ComputePipeline> GraphCompileContext::createPipeline(
     // the pass binds itself). Catching it here turns a silent unbound descriptor into an error.
     for (const auto& b : pipeline->interface().bindings) {
         if (std::find(names.begin(), names.end(), b.name) != names.end()) continue;
+        // scene_* resources are bound by SceneGpu::bind (docs/scene-gpu.md).
+        if (mGraph.scene() && b.name.rfind("scene_", 0) == 0) continue;
         std::string fields;
         for (const auto& f : node.reflection.fields()) fields += (fields.empty() ? "" : ", ") + f.name;
         throw RuntimeError("pass '" + node.name + "' (" + node.type + "): shader '" + shaderPath +
@@ -46,7 +48,11 @@ std::unique_ptr<gpu::ComputePipeline> GraphCompileContext::createPipeline(
     return pipeline;
 }
 
+const scene::SceneGpu* GraphCompileContext::scene() const { return mGraph.scene(); }
+
 gpu::Context& GraphExecuteContext::gpu() { return mGraph.gpu(); }
+const scene::SceneGpu* GraphExecuteContext::scene() const { return mGraph.scene(); }
+const scene::FrameCamera& GraphExecuteContext::camera() const { return mGraph.camera(); }
 
 bool GraphExecuteContext::connected(const std::string& input) const {
     return mPlan.inputs.count({mNode, input}) > 0;

@@ -18,6 +18,7 @@ public:
     std::unique_ptr<gpu::ComputePipeline> createPipeline(
         const std::string& shaderPath, const std::vector<std::pair<std::string, std::string>>& defines,
         const std::vector<std::string>& extraResources) override;
+    const scene::SceneGpu* scene() const override;
 
 private:
     RenderGraph& mGraph;
@@ -39,6 +40,8 @@ public:
     const gpu::Buffer& buffer(const std::string& field) override;
     bool historyValid(const std::string& input) const override;
     void bindFields(gpu::ComputePipeline& pipeline) override;
+    const scene::SceneGpu* scene() const override;
+    const scene::FrameCamera& camera() const override;
 
 private:
     RenderGraph& mGraph;

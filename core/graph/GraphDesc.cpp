@@ -118,6 +118,8 @@ nlohmann::ordered_json toOrderedJson(const GraphDesc& graph) {
     if (graph.defaults.frames) defaults["frames"] = *graph.defaults.frames;
     if (graph.defaults.seed) defaults["seed"] = *graph.defaults.seed;
     if (graph.defaults.scene) defaults["scene"] = *graph.defaults.scene;
+    if (graph.defaults.camera) defaults["camera"] = *graph.defaults.camera;
+    if (graph.defaults.stereo) defaults["stereo"] = *graph.defaults.stereo;
     if (!defaults.empty()) root["defaults"] = defaults;
 
     nlohmann::ordered_json passes = nlohmann::ordered_json::array();

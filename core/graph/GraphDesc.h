@@ -67,6 +67,8 @@ struct GraphDefaults {
     std::optional<uint32_t> frames;
     std::optional<uint64_t> seed;
     std::optional<std::string> scene;
+    std::optional<std::string> camera;  // camera path file, relative to the graph file
+    std::optional<bool> stereo;         // side-by-side stereo rig (seed 000 §3.1)
     bool operator==(const GraphDefaults&) const = default;
 };
 

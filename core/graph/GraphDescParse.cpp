@@ -13,7 +13,8 @@ namespace {
 
 const std::vector<std::string> kTopFields = {
     "version", "name", "description", "defaults", "passes", "edges", "order", "outputs", "editor"};
-const std::vector<std::string> kDefaultsFields = {"size", "frames", "seed", "scene"};
+const std::vector<std::string> kDefaultsFields = {"size",  "frames", "seed",
+                                                   "scene", "camera", "stereo"};
 const std::vector<std::string> kPassFields = {"name", "type", "params", "enabled"};
 const std::vector<std::string> kEdgeFields = {"from", "to", "delay"};
 const std::vector<std::string> kOrderFields = {"before", "after"};
@@ -79,6 +80,8 @@ private:
         }
         if (auto seed = node.find("seed")) mGraph.defaults.seed = seed->asUnsigned();
         if (auto scene = node.find("scene")) mGraph.defaults.scene = scene->asString();
+        if (auto camera = node.find("camera")) mGraph.defaults.camera = camera->asString();
+        if (auto stereo = node.find("stereo")) mGraph.defaults.stereo = stereo->asBool();
     }
 
     void parsePasses(const JsonNode& node) {

@@ -22,6 +22,11 @@ class Buffer;
 class ComputePipeline;
 }  // namespace fovea::gpu
 
+namespace fovea::scene {
+class SceneGpu;
+struct FrameCamera;
+}  // namespace fovea::scene
+
 namespace fovea::graph {
 
 // Scene features a pass can require. A pass whose needs the loaded scene does not meet is culled
@@ -40,6 +45,7 @@ struct FrameInfo {
     uint64_t framesSinceReset = 0;  // 0 on the first frame and after reset/resize/camera cut
     uint64_t seed = 0;
     uint32_t width = 0, height = 0;  // render size
+    bool cameraCut = false;          // this frame starts a new shot (history was dropped)
 };
 
 struct ResourceExtent {
@@ -60,6 +66,9 @@ public:
     // Creates a pipeline and checks that every resource the shader declares is a field of this
     // pass or listed in `extraResources` (resources the pass binds itself, e.g. a scene buffer).
     // A shader expecting `normal` in a pass that has none is a clear error here, not at dispatch.
+    // The scene on the GPU, or null when the run has none (then no pass needing geometry is
+    // alive). Its defines() specialize shaders for the scene's features.
+    virtual const scene::SceneGpu* scene() const = 0;
     virtual std::unique_ptr<gpu::ComputePipeline> createPipeline(
         const std::string& shaderPath,
         const std::vector<std::pair<std::string, std::string>>& defines = {},
@@ -82,6 +91,9 @@ public:
     virtual bool historyValid(const std::string& input) const = 0;
     // Binds every shader resource whose name is a connected field of this pass.
     virtual void bindFields(gpu::ComputePipeline& pipeline) = 0;
+    // The scene (null without one) and this frame's camera (a default one without a scene).
+    virtual const scene::SceneGpu* scene() const = 0;
+    virtual const scene::FrameCamera& camera() const = 0;
 };
 
 class Pass {

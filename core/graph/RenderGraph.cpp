@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "core/graph/GraphContexts.h"
+#include "core/scene/Camera.h"
 #include "core/util/Error.h"
 #include "core/vk/Context.h"
 #include "core/vk/Formats.h"
@@ -40,7 +41,7 @@ const char* passStatusName(PassStatus s) {
 }
 
 RenderGraph::RenderGraph(gpu::Context& gpu, const PassRegistry& registry)
-    : mGpu(gpu), mRegistry(registry) {
+    : mGpu(gpu), mRegistry(registry), mCamera(std::make_unique<scene::FrameCamera>()) {
     const auto& device = mGpu.device();
     mCommandPool = std::make_unique<vk::raii::CommandPool>(
         device, vk::CommandPoolCreateInfo{
@@ -92,6 +93,12 @@ void RenderGraph::resize(uint32_t width, uint32_t height) {
     reset();
 }
 
+void RenderGraph::setCamera(const scene::FrameCamera& camera) {
+    *mCamera = camera;
+    if (camera.cut) reset();
+    mFrame.cameraCut = camera.cut;
+}
+
 void RenderGraph::reset() {
     mFrame.framesSinceReset = 0;
     std::fill(mLastCacheKey.begin(), mLastCacheKey.end(), 0);
@@ -133,6 +140,7 @@ void RenderGraph::allocate() {
         }
         auto res = std::make_unique<RuntimeResource>();
         res->key = key;
+        res->createdAt = mFrame.index;
         if (!r.isImage) {
             res->buffer = std::make_unique<gpu::Buffer>(mGpu, r.bufferBytes);
             (r.lifetime == Lifetime::Transient ? mAllocatedTransient : mAllocatedPersistent) +=
@@ -211,7 +219,9 @@ const gpu::Buffer& RenderGraph::bufferFor(size_t node, const std::string& field)
 bool RenderGraph::historyValidFor(size_t node, const std::string& input) const {
     auto in = mPlan.inputs.find({node, input});
     if (in == mPlan.inputs.end()) return false;
-    return mFrame.framesSinceReset >= in->second.delay;
+    const uint64_t delay = in->second.delay;
+    return mFrame.framesSinceReset >= delay &&
+           mFrame.index - mResources[in->second.resource]->createdAt >= delay;
 }
 
 const gpu::Image& RenderGraph::dummyImage(vk::Format format) {

@@ -18,6 +18,11 @@ class MemoryBlock;
 class TimestampPool;
 }  // namespace fovea::gpu
 
+namespace fovea::scene {
+class SceneGpu;
+struct FrameCamera;
+}  // namespace fovea::scene
+
 namespace fovea::graph {
 
 enum class PassStatus { Executed, Culled, Skipped, Cached, Bypassed };
@@ -51,6 +56,13 @@ public:
     void resize(uint32_t width, uint32_t height);  // rebuild at a new size; history invalid
     void reset();  // history invalid (reset / camera cut); caches dropped
 
+    // The scene passes see (not owned; must outlive the graph's use of it; null = none) and the
+    // camera of the next frame. A camera with `cut` set resets history before the frame runs.
+    void setScene(const scene::SceneGpu* scene) { mScene = scene; }
+    void setCamera(const scene::FrameCamera& camera);
+    const scene::SceneGpu* scene() const { return mScene; }
+    const scene::FrameCamera& camera() const { return *mCamera; }
+
     FrameTiming runFrame();
 
     const CompiledPlan& plan() const { return mPlan; }
@@ -77,6 +89,7 @@ private:
     void allocate();
     void compilePasses();
     void recordPass(const vk::raii::CommandBuffer& cmd, size_t node, double& passCpuMs);
+    void carryRings(const vk::raii::CommandBuffer& cmd, size_t node, bool allOutputs) const;
     void recordBarrier(const vk::raii::CommandBuffer& cmd, const BarrierPlan* plan) const;
     uint64_t cacheKey(size_t node) const;
     size_t slotOf(const RuntimeResource& r, uint32_t delay) const;
@@ -96,6 +109,8 @@ private:
     std::unique_ptr<vk::raii::CommandBuffer> mCommandBuffer;
     std::unique_ptr<vk::raii::Fence> mFence;
     FrameInfo mFrame;
+    const scene::SceneGpu* mScene = nullptr;
+    std::unique_ptr<scene::FrameCamera> mCamera;
     uint64_t mAllocatedTransient = 0, mAllocatedPersistent = 0;
 };
 

@@ -62,12 +62,36 @@ uint64_t RenderGraph::cacheKey(size_t node) const {
     const PassNode& n = mPlan.nodes[node];
     uint64_t h = 1469598103934665603ull;
     for (char c : saveParams(*n.pass, false).dump()) h = mix(h, uint8_t(c));
+    h = mix(h, mFrame.seed);  // passes see it (ImageSource noise); size changes reset anyway
     for (const auto& [key, src] : mPlan.inputs) {
         if (key.first != node) continue;
         h = mix(h, mResources[src.resource]->version);
         h = mix(h, src.delay);
     }
     return h == 0 ? 1 : h;  // 0 means "never ran"
+}
+
+void RenderGraph::carryRings(const vk::raii::CommandBuffer& cmd, size_t n, bool all) const {
+    // An output read through a delayed edge lives in a ring and each frame writes the next slot.
+    // A persistent one (read-modify-write, e.g. a running mean) and any output of a skipped pass
+    // must still start from the previous frame's content: copy it into this frame's slot.
+    const PassNode& node = mPlan.nodes[n];
+    bool copied = false;
+    for (const auto& f : node.reflection.fields()) {
+        if (f.kind == FieldKind::Input || !(all || f.persistent)) continue;
+        size_t index = mPlan.resourceOf.at({n, f.name});
+        const RuntimeResource& r = *mResources[index];
+        if (mPlan.resources[index].lifetime != Lifetime::History || r.ring.size() < 2) continue;
+        const gpu::Image& src = *r.ring[slotOf(r, 1)];
+        const gpu::Image& dst = *r.ring[slotOf(r, 0)];
+        vk::ImageCopy region{.srcSubresource = {vk::ImageAspectFlagBits::eColor, 0, 0, 1},
+                             .dstSubresource = {vk::ImageAspectFlagBits::eColor, 0, 0, 1},
+                             .extent = {dst.width(), dst.height(), 1}};
+        cmd.copyImage(src.image(), vk::ImageLayout::eGeneral, dst.image(),
+                      vk::ImageLayout::eGeneral, region);
+        copied = true;
+    }
+    if (copied) recordBarrier(cmd, nullptr);
 }
 
 void RenderGraph::recordPass(const vk::raii::CommandBuffer& cmd, size_t n, double& passCpuMs) {
@@ -80,6 +104,7 @@ void RenderGraph::recordPass(const vk::raii::CommandBuffer& cmd, size_t n, doubl
     if (!node.pass->isActive(mFrame)) {
         auto pairs = node.pass->bypass();
         if (pairs.empty()) {
+            carryRings(cmd, n, true);
             record.status = PassStatus::Skipped;
             record.reason = "inactive this frame; outputs keep their previous content";
             return;
@@ -116,6 +141,7 @@ void RenderGraph::recordPass(const vk::raii::CommandBuffer& cmd, size_t n, doubl
         }
         mLastCacheKey[n] = key;
     }
+    carryRings(cmd, n, false);
     GraphExecuteContext ctx(*this, mPlan, n, cmd, mFrame);
     auto t0 = Clock::now();
     node.pass->execute(ctx);
@@ -169,6 +195,7 @@ FrameTiming RenderGraph::runFrame() {
     }
     ++mFrame.index;
     ++mFrame.framesSinceReset;
+    mFrame.cameraCut = false;
     return timing;
 }
 
