@@ -2,6 +2,7 @@
 #include <chrono>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -22,11 +23,13 @@ void addRunCommand(CLI::App& app, RunOptions& o) {
     auto* cmd = app.add_subcommand("run", "run a graph headless and write its outputs + report");
     cmd->add_option("graph", o.graph.graph, "graph file (JSON)")->required();
     cmd->add_option("--scene", o.scene, "scene to render ('none' until scenes land)");
-    cmd->add_option("--frames", o.frames, "number of frames (default: graph default or 1)");
+    cmd->add_option("--frames", o.frames, "number of frames (default: graph default or 1)")
+        ->check(CLI::Range(1, std::numeric_limits<int>::max()));  // 0 is the "default" marker
     cmd->add_option("--size", o.graph.size, "render size WIDTHxHEIGHT (default: graph or 256x256)");
     cmd->add_option("--out", o.out, "output directory (default: out/<graph name>)");
     cmd->add_option("--set", o.graph.sets, "override a parameter: pass.param=value (repeatable)");
-    cmd->add_option("--seed", o.seed, "random seed (default: graph default or 0)");
+    cmd->add_option("--seed", o.seed, "random seed (default: graph default or 0)")
+        ->check(CLI::Range(int64_t(0), std::numeric_limits<int64_t>::max()));  // -1: "default"
     cmd->add_option("--save-frames", o.saveFrames,
                     "frames whose outputs are written: 'last', 'all', 'none' or a list '0,3,7'");
     cmd->add_option("--device", o.device, "GPU index or name substring (default: best available)");
@@ -40,6 +43,9 @@ namespace {
 
 std::set<uint32_t> parseSaveFrames(const std::string& text, uint32_t frames) {
     std::set<uint32_t> out;
+    if (text.empty())
+        throw InputError("--save-frames", "", "expected 'last', 'all', 'none' or a comma list "
+                                              "of frame numbers, got ''");
     if (text == "none") return out;
     if (text == "last") return {frames - 1};
     if (text == "all") {

@@ -1,0 +1,323 @@
+// Golden-image tests (GoldenTest.*): shipped graphs rendered in-process at 32x32 for 3 frames and
+// compared with tests/goldens/<name>/. Update them with FOVEA_UPDATE_GOLDENS=1 (docs/testing.md).
+//
+// GoldenHarness.* test the harness itself against goldens in a temporary directory: creating,
+// matching, mismatch reports with actual and difference images, missing and stale goldens, the
+// sidecar's tolerance, the environment switch.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+
+#include "core/image/ImageIO.h"
+#include "tests/graph/GoldenHarness.h"
+#include "tests/unit/GpuTestFixture.h"
+
+namespace fs = std::filesystem;
+using fovea::test::GoldenMode;
+using fovea::test::GoldenReport;
+using fovea::test::GoldenSpec;
+using fovea::test::GoldenStatus;
+using nlohmann::json;
+
+namespace {
+
+class GoldenTest : public GpuTest {};
+
+// A 32x32, 3-frame golden of `graph` (relative to the repository root) in tests/goldens/<name>/.
+GoldenSpec golden(const std::string& name, const std::string& graph) {
+    GoldenSpec spec;
+    spec.name = name;
+    spec.graph = graph;
+    spec.width = 32;
+    spec.height = 32;
+    spec.frames = 3;
+    return spec;
+}
+
+// --- the goldens ------------------------------------------------------------------------------
+
+TEST_F(GoldenTest, Demo) {
+    // Seeded noise accumulated over 3 frames (acc.mean) and an ACES-tonemapped gradient (tm.ldr).
+    EXPECT_TRUE(fovea::test::goldenMatches(ctx(), golden("demo", "graphs/demo.json")));
+}
+
+TEST_F(GoldenTest, HistoryDifference) {
+    // frame-index minus its delay-1 history: exactly 1 everywhere on the third frame.
+    EXPECT_TRUE(fovea::test::goldenMatches(
+        ctx(), golden("history_difference", "graphs/tests/history_difference.json")));
+}
+
+TEST_F(GoldenTest, Chain20) {
+    // 18 chained Combines of animated noise (aliased transients), tonemapped to rgba8.
+    EXPECT_TRUE(fovea::test::goldenMatches(ctx(), golden("chain20", "graphs/tests/chain20.json")));
+}
+
+// --- the harness ------------------------------------------------------------------------------
+
+std::string readText(const fs::path& path) {
+    std::ifstream stream(path, std::ios::binary);
+    std::stringstream buffer;
+    buffer << stream.rdbuf();
+    return buffer.str();
+}
+
+bool contains(const std::string& text, const std::string& fragment) {
+    return text.find(fragment) != std::string::npos;
+}
+
+// Golden and failure roots in a fresh temporary directory, removed afterwards.
+class GoldenHarness : public GpuTest {
+protected:
+    void SetUp() override {
+        GpuTest::SetUp();
+        static std::atomic<int> counter{0};
+        std::random_device random;
+        mRoot = fs::temp_directory_path() /
+                ("fovea_golden_" +
+                 std::string(testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+                 std::to_string(::getpid()) + "_" + std::to_string(counter++) + "_" +
+                 std::to_string(random() % 1000000));
+        fs::remove_all(mRoot);
+        fs::create_directories(mRoot);
+    }
+    void TearDown() override {
+        std::error_code ignored;
+        fs::remove_all(mRoot, ignored);
+        GpuTest::TearDown();
+    }
+
+    // history_difference at 8x8, 2 frames: one rgba32f output, 1.0 everywhere.
+    GoldenSpec spec(GoldenMode mode) const {
+        GoldenSpec s;
+        s.name = "hd";
+        s.graph = "graphs/tests/history_difference.json";
+        s.width = 8;
+        s.height = 8;
+        s.frames = 2;
+        s.goldenRoot = mRoot / "goldens";
+        s.failureRoot = mRoot / "failures";
+        s.mode = mode;
+        return s;
+    }
+    fs::path golden(const std::string& ext) const {
+        return mRoot / "goldens" / "hd" / ("diff.result" + ext);
+    }
+    fs::path failure(const std::string& suffix) const {
+        return mRoot / "failures" / "hd" / ("diff.result" + suffix);
+    }
+
+    GoldenReport run(const GoldenSpec& s) { return fovea::test::runGolden(ctx(), s); }
+
+    // Creates the golden and checks it was written.
+    void create() {
+        GoldenReport r = run(spec(GoldenMode::Update));
+        ASSERT_TRUE(r.ok()) << r.summary();
+        ASSERT_EQ(r.outputs.size(), 1u);
+        ASSERT_EQ(r.outputs[0].status, GoldenStatus::Written) << r.summary();
+    }
+
+    fs::path mRoot;
+};
+
+TEST_F(GoldenHarness, UpdateWritesGoldenAndSidecarThenCompareMatches) {
+    create();
+    ASSERT_TRUE(fs::is_regular_file(golden(".exr")));
+    ASSERT_TRUE(fs::is_regular_file(golden(".json")));
+    auto image = fovea::image::readImage(golden(".exr"));
+    ASSERT_EQ(image.width, 8u);
+    ASSERT_EQ(image.height, 8u);
+    for (size_t p = 0; p < 64; ++p)
+        for (int c = 0; c < 3; ++c) ASSERT_EQ(image.pixels[p * 4 + c], 1.0f) << p;
+
+    json sidecar = json::parse(readText(golden(".json")));
+    EXPECT_EQ(sidecar.at("graph"), "graphs/tests/history_difference.json");
+    EXPECT_EQ(sidecar.at("output"), "diff.result");
+    EXPECT_EQ(sidecar.at("format"), "rgba32f");
+    EXPECT_EQ(sidecar.at("size"), json::array({8, 8}));
+    EXPECT_EQ(sidecar.at("frames"), 2);
+    EXPECT_EQ(sidecar.at("seed"), 0);
+    EXPECT_EQ(sidecar.at("device"), ctx().deviceName());
+    EXPECT_TRUE(sidecar.at("driver").is_string());
+    EXPECT_EQ(sidecar.at("tolerance").at("rmse"), 1e-5);
+    EXPECT_EQ(sidecar.at("tolerance").at("max_abs"), 1e-4);
+    EXPECT_EQ(sidecar.at("created").get<std::string>().size(), 20u) << sidecar["created"];
+
+    GoldenReport r = run(spec(GoldenMode::Compare));
+    EXPECT_TRUE(r.ok()) << r.summary();
+    ASSERT_EQ(r.outputs.size(), 1u);
+    EXPECT_EQ(r.outputs[0].status, GoldenStatus::Match);
+    EXPECT_EQ(r.outputs[0].compare.rmse, 0.0);
+    EXPECT_FALSE(fs::exists(mRoot / "failures" / "hd")) << "nothing to report on a match";
+
+    // Updating again with the same result leaves the files alone (clean diffs).
+    const std::string before = readText(golden(".json"));
+    r = run(spec(GoldenMode::Update));
+    ASSERT_EQ(r.outputs.size(), 1u);
+    EXPECT_EQ(r.outputs[0].status, GoldenStatus::Unchanged) << r.summary();
+    EXPECT_EQ(readText(golden(".json")), before);
+}
+
+TEST_F(GoldenHarness, MissingGoldenFailsAndSaysHowToCreateIt) {
+    GoldenReport r = run(spec(GoldenMode::Compare));
+    EXPECT_FALSE(r.ok());
+    ASSERT_EQ(r.outputs.size(), 1u);
+    EXPECT_EQ(r.outputs[0].status, GoldenStatus::Missing);
+    const std::string text = r.summary();
+    EXPECT_TRUE(contains(text, golden(".exr").string())) << text;
+    EXPECT_TRUE(contains(text, "FOVEA_UPDATE_GOLDENS=1")) << text;
+    EXPECT_TRUE(contains(text, "--gtest_filter=GoldenHarness.MissingGolden")) << text;
+    EXPECT_TRUE(fs::is_regular_file(failure(".actual.exr"))) << "actual written for review";
+    EXPECT_FALSE(fs::exists(golden(".exr"))) << "compare mode never writes goldens";
+
+    // goldenMatches turns it into a failed assertion carrying the same text.
+    auto result = fovea::test::goldenMatches(ctx(), spec(GoldenMode::Compare));
+    EXPECT_FALSE(result);
+    EXPECT_TRUE(contains(result.message(), "FOVEA_UPDATE_GOLDENS=1")) << result.message();
+}
+
+TEST_F(GoldenHarness, MismatchWritesActualAndDifference) {
+    create();
+    // Corrupt one pixel of the golden by 0.5 in green.
+    auto image = fovea::image::readImage(golden(".exr"));
+    const size_t pixel = 3 * 8 + 5;
+    image.pixels[pixel * 4 + 1] -= 0.5f;
+    fovea::image::writeExr(golden(".exr"), image);
+
+    GoldenReport r = run(spec(GoldenMode::Compare));
+    EXPECT_FALSE(r.ok());
+    ASSERT_EQ(r.outputs.size(), 1u);
+    const auto& o = r.outputs[0];
+    EXPECT_EQ(o.status, GoldenStatus::Mismatch);
+    EXPECT_DOUBLE_EQ(o.compare.maxAbs, 0.5);
+    EXPECT_NEAR(o.compare.rmse, std::sqrt(0.25 / (64 * 3)), 1e-9);
+    EXPECT_EQ(o.actual, failure(".actual.exr"));
+    EXPECT_EQ(o.difference, failure(".diff.exr"));
+    for (const char* suffix : {".actual.exr", ".actual.png", ".diff.exr", ".diff.png"})
+        EXPECT_TRUE(fs::is_regular_file(failure(suffix))) << suffix;
+    auto diff = fovea::image::readImage(failure(".diff.exr"));
+    ASSERT_EQ(diff.pixels.size(), 64u * 4u);
+    for (size_t p = 0; p < 64; ++p)
+        for (int c = 0; c < 3; ++c)
+            EXPECT_EQ(diff.pixels[p * 4 + c], p == pixel && c == 1 ? 0.5f : 0.0f) << p << c;
+    auto actual = fovea::image::readImage(failure(".actual.exr"));
+    EXPECT_EQ(actual.pixels[pixel * 4 + 1], 1.0f);
+
+    const std::string text = r.summary();
+    for (const std::string& fragment :
+         {std::string("MISMATCH"), std::string("rmse"), std::string("max_abs 0.5"),
+          failure(".actual.exr").string(), failure(".diff.exr").string(), golden(".exr").string(),
+          std::string("FOVEA_UPDATE_GOLDENS=1")})
+        EXPECT_TRUE(contains(text, fragment)) << fragment << "\n" << text;
+
+    // Updating accepts the new result; the next comparison matches and clears the failure files.
+    ASSERT_TRUE(run(spec(GoldenMode::Update)).ok());
+    r = run(spec(GoldenMode::Compare));
+    EXPECT_TRUE(r.ok()) << r.summary();
+    EXPECT_FALSE(fs::exists(failure(".diff.exr")));
+}
+
+TEST_F(GoldenHarness, ToleranceComesFromTheSidecar) {
+    create();
+    auto image = fovea::image::readImage(golden(".exr"));
+    image.pixels[0] += 1e-3f;  // over the default float max_abs (1e-4)
+    fovea::image::writeExr(golden(".exr"), image);
+    EXPECT_FALSE(run(spec(GoldenMode::Compare)).ok());
+
+    json sidecar = json::parse(readText(golden(".json")));
+    sidecar["tolerance"] = {{"rmse", 1e-3}, {"max_abs", 2e-3}};
+    std::ofstream(golden(".json")) << sidecar.dump(2);
+    GoldenReport r = run(spec(GoldenMode::Compare));
+    EXPECT_TRUE(r.ok()) << r.summary();
+
+    // A hand-loosened tolerance survives an update; an explicit one in the spec replaces it.
+    ASSERT_TRUE(run(spec(GoldenMode::Update)).ok());
+    EXPECT_EQ(json::parse(readText(golden(".json")))["tolerance"]["max_abs"], 2e-3);
+    GoldenSpec strict = spec(GoldenMode::Update);
+    strict.tolerance = fovea::test::GoldenTolerance{.rmse = 0, .maxAbs = 0};
+    ASSERT_TRUE(run(strict).ok());
+    EXPECT_EQ(json::parse(readText(golden(".json")))["tolerance"]["max_abs"], 0.0);
+    EXPECT_TRUE(run(spec(GoldenMode::Compare)).ok()) << "identical result passes tolerance 0";
+
+    // A sidecar without a usable tolerance is reported, not ignored.
+    sidecar.erase("tolerance");
+    std::ofstream(golden(".json")) << sidecar.dump(2);
+    r = run(spec(GoldenMode::Compare));
+    EXPECT_FALSE(r.ok());
+    EXPECT_EQ(r.outputs[0].status, GoldenStatus::Invalid) << r.summary();
+}
+
+TEST_F(GoldenHarness, GoldenForAnotherRunIsStale) {
+    create();
+    GoldenSpec bigger = spec(GoldenMode::Compare);
+    bigger.width = 16;
+    GoldenReport r = run(bigger);
+    EXPECT_FALSE(r.ok());
+    ASSERT_EQ(r.outputs.size(), 1u);
+    EXPECT_EQ(r.outputs[0].status, GoldenStatus::Stale);
+    EXPECT_TRUE(contains(r.summary(), "size [8,8] (test runs [16,8])")) << r.summary();
+
+    GoldenSpec reseeded = spec(GoldenMode::Compare);
+    reseeded.seed = 5;
+    r = run(reseeded);
+    EXPECT_FALSE(r.ok());
+    EXPECT_TRUE(contains(r.summary(), "seed 0 (test runs 5)")) << r.summary();
+}
+
+TEST_F(GoldenHarness, GoldenOfNoOutputIsStale) {
+    create();
+    fs::copy_file(golden(".exr"), mRoot / "goldens" / "hd" / "old.output.exr");
+    fs::copy_file(golden(".json"), mRoot / "goldens" / "hd" / "old.output.json");
+    GoldenReport r = run(spec(GoldenMode::Compare));
+    EXPECT_FALSE(r.ok());
+    ASSERT_EQ(r.outputs.size(), 2u);
+    EXPECT_EQ(r.outputs[0].status, GoldenStatus::Match);
+    EXPECT_EQ(r.outputs[1].status, GoldenStatus::Stale);
+    EXPECT_TRUE(contains(r.summary(), "old.output.exr")) << r.summary();
+
+    // Update removes it.
+    EXPECT_TRUE(run(spec(GoldenMode::Update)).ok());
+    EXPECT_FALSE(fs::exists(mRoot / "goldens" / "hd" / "old.output.exr"));
+    EXPECT_FALSE(fs::exists(mRoot / "goldens" / "hd" / "old.output.json"));
+    EXPECT_TRUE(run(spec(GoldenMode::Compare)).ok());
+}
+
+TEST_F(GoldenHarness, EnvironmentSelectsTheMode) {
+    const char* old = std::getenv("FOVEA_UPDATE_GOLDENS");
+    const std::optional<std::string> saved = old ? std::optional<std::string>(old) : std::nullopt;
+
+    ::setenv("FOVEA_UPDATE_GOLDENS", "1", 1);
+    EXPECT_EQ(fovea::test::modeFromEnvironment(), GoldenMode::Update);
+    GoldenReport r = run(spec(GoldenMode::FromEnvironment));
+    EXPECT_EQ(r.mode, GoldenMode::Update);
+    EXPECT_TRUE(r.ok()) << r.summary();
+    EXPECT_TRUE(fs::is_regular_file(golden(".exr")));
+
+    ::setenv("FOVEA_UPDATE_GOLDENS", "0", 1);
+    EXPECT_EQ(fovea::test::modeFromEnvironment(), GoldenMode::Compare);
+    ::unsetenv("FOVEA_UPDATE_GOLDENS");
+    r = run(spec(GoldenMode::FromEnvironment));
+    EXPECT_EQ(r.mode, GoldenMode::Compare);
+    EXPECT_TRUE(r.ok()) << r.summary();
+
+    if (saved) ::setenv("FOVEA_UPDATE_GOLDENS", saved->c_str(), 1);
+}
+
+TEST(GoldenTolerance, DefaultsByFormat) {
+    using fovea::test::defaultTolerance;
+    for (const char* format : {"rgba8", "r8"}) {  // one 8-bit code, not two
+        EXPECT_GT(defaultTolerance(format).maxAbs, 1.0 / 255.0) << format;
+        EXPECT_LT(defaultTolerance(format).maxAbs, 2.0 / 255.0) << format;
+    }
+    EXPECT_EQ(defaultTolerance("rgba16f").maxAbs, 2e-3);
+    EXPECT_EQ(defaultTolerance("rgba32f").maxAbs, 1e-4);
+    EXPECT_EQ(defaultTolerance("rgba32ui").maxAbs, 1e-4);
+    EXPECT_EQ(defaultTolerance("R8G8Snorm").maxAbs, 1e-4);  // unnamed: treated as float
+}
+
+}  // namespace
