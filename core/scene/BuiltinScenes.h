@@ -1,0 +1,47 @@
+// Scenes built into fovea, selected as "builtin:<name>" (docs/scenes.md gives every number and
+// its source):
+//   cornell  the Cornell box from Cornell's own measurement data (millimetres, 38 triangles)
+//   forest   the heavy procedural benchmark scene (~200k triangles, 80 point lights), seeded,
+//            identical on every run
+//   plane    a diffuse plane under a large emissive quad: one bounce, known radiance
+//   furnace  a closed box whose faces all emit Le and reflect rho: radiance Le / (1 - rho)
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/scene/Scene.h"
+
+namespace fovea::scene {
+
+// `name` with or without the "builtin:" prefix. Unknown names: InputError with a did-you-mean
+// and the list of built-in scenes.
+Scene loadBuiltinScene(const std::string& name);
+
+// "builtin:cornell", ... in a stable order.
+std::vector<std::string> builtinSceneNames();
+
+// The analytic scenes' parameters, for energy tests.
+namespace builtin {
+
+constexpr float kPlaneAlbedo = 0.5f;          // diffuse reflectance of the plane
+constexpr float kPlaneEmission = 1.0f;        // Le of the emitter (grey)
+constexpr float kPlaneHalfSize = 1.0f;        // the plane spans [-1, 1]^2 at y = 0
+constexpr float kPlaneLightHeight = 1.0f;     // the emitter faces down at y = 1 ...
+constexpr float kPlaneLightHalfSize = 50.0f;  // ... and spans [-50, 50]^2
+// Radiance leaving the centre of the plane (one bounce; the emitter is black): albedo * Le * F,
+// F = the form factor from a point to the parallel emitter square centred above it.
+double planeCenterRadiance();
+
+constexpr float kFurnaceAlbedo = 0.5f;    // rho of every face
+constexpr float kFurnaceEmission = 0.5f;  // Le of every face
+constexpr float kFurnaceHalfSize = 1.0f;  // the box is [-1, 1]^3, normals inwards
+// Radiance anywhere inside after `bounces` reflections (Le * sum rho^k, k = 0..bounces); with
+// bounces < 0 the infinite sum Le / (1 - rho) = 1.
+double furnaceRadiance(int bounces = -1);
+
+}  // namespace builtin
+
+// The forest generator (BuiltinForest.cpp).
+Scene buildForestScene();
+
+}  // namespace fovea::scene

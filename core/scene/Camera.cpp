@@ -1,0 +1,71 @@
+#include "core/scene/Camera.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace fovea::scene {
+namespace {
+
+float radicalInverse(uint64_t index, uint32_t base) {
+    float inverse = 1.0f / float(base), fraction = inverse, result = 0.0f;
+    while (index > 0) {
+        result += float(index % base) * fraction;
+        index /= base;
+        fraction *= inverse;
+    }
+    return result;
+}
+
+// A look-at basis that stays defined when `up` is parallel to the view direction or the target
+// equals the position (both possible in hand-written camera paths).
+glm::mat4 safeLookAt(const glm::vec3& position, const glm::vec3& target, const glm::vec3& up) {
+    glm::vec3 forward = target - position;
+    if (glm::dot(forward, forward) < 1e-20f) forward = glm::vec3(0, 0, -1);
+    forward = glm::normalize(forward);  // length checked above
+    glm::vec3 u = up;
+    if (glm::dot(u, u) < 1e-20f || glm::length(glm::cross(forward, glm::normalize(u))) < 1e-4f)
+        u = std::abs(forward.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+    return glm::lookAtRH(position, position + forward, u);
+}
+
+}  // namespace
+
+glm::vec2 halton23(uint64_t index) {
+    // Index 0 of the sequence is (0,0); start at 1 so frame 0 is already off-centre.
+    return {radicalInverse(index + 1, 2), radicalInverse(index + 1, 3)};
+}
+
+FrameCamera makeFrameCamera(const CameraDesc& camera, uint32_t width, uint32_t height,
+                            const CameraRigOptions& rig, uint64_t frameIndex,
+                            const FrameCamera* previous, const glm::vec2 gaze[kMaxEyes]) {
+    FrameCamera out;
+    out.eyeCount = rig.stereo ? 2u : 1u;
+    out.eyeWidth = std::max(1u, width / out.eyeCount);
+    out.height = std::max(1u, height);
+    out.yfov = std::clamp(camera.yfov, 1e-3f, 3.1f);
+    out.jitter = rig.jitter ? halton23(frameIndex % 16) - glm::vec2(0.5f) : glm::vec2(0.0f);
+
+    const glm::mat4 centre = safeLookAt(camera.position, camera.target, camera.up);
+    const float aspect = float(out.eyeWidth) / float(out.height);  // both >= 1
+    const glm::mat4 proj =
+        glm::perspectiveRH_ZO(out.yfov, aspect, std::max(camera.znear, 1e-6f), 1e6f);
+    for (uint32_t e = 0; e < out.eyeCount; ++e) {
+        EyeView& eye = out.eyes[e];
+        // Parallel stereo: each eye is shifted along the camera's right axis by half the IPD.
+        const float shift = out.eyeCount == 2 ? (e == 0 ? 0.5f : -0.5f) * rig.ipd : 0.0f;
+        eye.view = glm::translate(glm::mat4(1.0f), glm::vec3(shift, 0.0f, 0.0f)) * centre;
+        eye.proj = proj;
+        eye.viewProj = proj * eye.view;
+        eye.invViewProj = glm::inverse(eye.viewProj);
+        eye.position = glm::vec3(glm::inverse(eye.view)[3]);
+        eye.gaze = gaze ? glm::clamp(gaze[e], glm::vec2(0.0f), glm::vec2(1.0f)) : glm::vec2(0.5f);
+        eye.offsetX = e * out.eyeWidth;
+        eye.prevViewProj = previous && previous->eyeCount == out.eyeCount
+                               ? previous->eyes[e].viewProj
+                               : eye.viewProj;
+    }
+    return out;
+}
+
+}  // namespace fovea::scene

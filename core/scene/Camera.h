@@ -1,0 +1,50 @@
+// Per-frame camera state handed to passes: one view per eye (mono = 1 eye, stereo = 2 eyes side
+// by side in one image, seed 000 §3.1), current and previous matrices for reprojection, the
+// sub-pixel jitter of this frame (Halton 2,3 for TAA), the gaze point of each eye and the camera
+// cut flag that invalidates history.
+#pragma once
+#include <cstdint>
+#include <glm/glm.hpp>
+
+#include "core/scene/Scene.h"
+
+namespace fovea::scene {
+
+constexpr uint32_t kMaxEyes = 2;
+
+struct EyeView {
+    glm::mat4 view{1.0f}, proj{1.0f};
+    glm::mat4 viewProj{1.0f}, invViewProj{1.0f};
+    glm::mat4 prevViewProj{1.0f};  // the previous frame's (jitter-free) matrix, for motion vectors
+    glm::vec3 position{0.0f};      // eye position in world space
+    glm::vec2 gaze{0.5f};          // gaze point in [0,1]^2 of this eye's image (0,0 = top-left)
+    uint32_t offsetX = 0;          // first column of this eye in the side-by-side image
+};
+
+struct FrameCamera {
+    EyeView eyes[kMaxEyes];
+    uint32_t eyeCount = 1;
+    uint32_t eyeWidth = 0, height = 0;  // per-eye image size in pixels
+    glm::vec2 jitter{0.0f};             // sub-pixel offset in pixels, in [-0.5, 0.5)^2
+    bool cut = false;                   // history must not be reused this frame
+    float yfov = 0.8f;
+};
+
+// Stereo and jitter options of a run.
+struct CameraRigOptions {
+    bool stereo = false;
+    float ipd = 0.064f;  // interpupillary distance in scene units (metres for most glTF files)
+    bool jitter = false;
+};
+
+// Halton (2,3) point `index` (1-based internally) in [0,1)^2.
+glm::vec2 halton23(uint64_t index);
+
+// Builds the per-eye matrices for `camera` at a render size of `width` x `height` (the whole
+// side-by-side image when stereo). `previous` supplies prevViewProj (null: same as this frame).
+// `frameIndex` selects the jitter sample. `gaze` holds one gaze point per eye.
+FrameCamera makeFrameCamera(const CameraDesc& camera, uint32_t width, uint32_t height,
+                            const CameraRigOptions& rig, uint64_t frameIndex,
+                            const FrameCamera* previous, const glm::vec2 gaze[kMaxEyes]);
+
+}  // namespace fovea::scene

@@ -1,0 +1,106 @@
+#include "core/scene/GltfMaterials.h"
+
+#include <algorithm>
+
+#include "core/scene/GltfTextures.h"
+#include "core/util/Error.h"
+
+namespace fovea::scene::gltf {
+
+namespace {
+
+float unit(double v) {
+    return float(std::clamp(v, 0.0, 1.0));
+}
+
+}  // namespace
+
+Material defaultMaterial() {
+    Material m;
+    m.name = "default";
+    m.baseColor = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
+    m.metallic = 0.0f;
+    m.roughness = 1.0f;
+    return m;
+}
+
+uint32_t MaterialTable::idFor(int index) {
+    if (index >= 0 && size_t(index) >= mModel.materials.size()) {
+        throw InputError(mDoc.file, "/materials/" + std::to_string(index), "material missing");
+    }
+    auto found = mMaterials.find(index);
+    if (found != mMaterials.end()) return found->second;
+    Material material = index < 0 ? defaultMaterial() : convert(size_t(index));
+    uint32_t id = uint32_t(mScene.materials.size());
+    mScene.materials.push_back(std::move(material));
+    mMaterials.emplace(index, id);
+    return id;
+}
+
+int MaterialTable::textureFor(const tinygltf::TextureInfo& info, const std::string& pointer) {
+    if (info.index < 0) return -1;
+    if (info.texCoord != 0) return -1;  // GltfUsage warned: only TEXCOORD_0 is supported
+    if (size_t(info.index) >= mModel.textures.size()) {
+        throw InputError(mDoc.file, pointer + "/index", "texture missing");
+    }
+    int image = mModel.textures[size_t(info.index)].source;
+    if (image < 0) {
+        // glTF 2.0 allows a texture without source (an extension may supply one); none of those
+        // extensions is supported, so the texture is dropped, loudly.
+        mWarnings.push_back("/textures/" + std::to_string(info.index) +
+                            ": no image source (unsupported texture extension?); the texture "
+                            "is ignored by " +
+                            pointer);
+        return -1;
+    }
+    auto found = mImages.find(image);
+    if (found != mImages.end()) return found->second;
+    Texture texture = decodeImage(mDoc, mModel, size_t(image));
+    int id = int(mScene.textures.size());
+    mScene.textures.push_back(std::move(texture));
+    mImages.emplace(image, id);
+    return id;
+}
+
+Material MaterialTable::convert(size_t index) {
+    const tinygltf::Material& src = mModel.materials[index];
+    std::string pointer = "/materials/" + std::to_string(index);
+    Material m;
+    m.name = src.name.empty() ? "material " + std::to_string(index) : src.name;
+    const tinygltf::PbrMetallicRoughness& pbr = src.pbrMetallicRoughness;
+    if (pbr.baseColorFactor.size() == 4) {
+        m.baseColor = glm::vec4(unit(pbr.baseColorFactor[0]), unit(pbr.baseColorFactor[1]),
+                                unit(pbr.baseColorFactor[2]), unit(pbr.baseColorFactor[3]));
+    }
+    m.metallic = unit(pbr.metallicFactor);
+    m.roughness = unit(pbr.roughnessFactor);
+    m.baseColorTexture =
+        textureFor(pbr.baseColorTexture, pointer + "/pbrMetallicRoughness/baseColorTexture");
+    m.metallicRoughnessTexture = textureFor(
+        pbr.metallicRoughnessTexture, pointer + "/pbrMetallicRoughness/metallicRoughnessTexture");
+    m.emissiveTexture = textureFor(src.emissiveTexture, pointer + "/emissiveTexture");
+    m.doubleSided = src.doubleSided;
+
+    // KHR_materials_emissive_strength is read from the raw JSON (validated there).
+    JsonView raw(&mDoc.json.at("materials").at(index), pointer, nullptr);
+    double strength = raw.object("extensions")
+                          .object("KHR_materials_emissive_strength")
+                          .number("emissiveStrength")
+                          .value_or(1.0);
+    if (src.emissiveFactor.size() == 3) {
+        glm::dvec3 factor(src.emissiveFactor[0], src.emissiveFactor[1], src.emissiveFactor[2]);
+        if (factor.x > 1.0 || factor.y > 1.0 || factor.z > 1.0) {
+            mWarnings.push_back(pointer +
+                                "/emissiveFactor: above 1 (outside the glTF range); kept as an "
+                                "HDR emission");
+        }
+        m.emissive = glm::vec3(factor * strength);
+    }
+    if (src.alphaMode != "OPAQUE") {
+        mWarnings.push_back(pointer + "/alphaMode: " + src.alphaMode +
+                            " is not supported; the material is drawn opaque");
+    }
+    return m;
+}
+
+}  // namespace fovea::scene::gltf

@@ -1,0 +1,201 @@
+#include "core/scene/GltfMesh.h"
+
+#include <cmath>
+
+#include "core/scene/GltfAccessor.h"
+#include "core/scene/GltfLayout.h"
+#include "core/util/Error.h"
+
+namespace fovea::scene::gltf {
+
+namespace {
+
+// A degenerate triangle has no direction; any unit vector will do since it covers no area and
+// is never hit. "Up" keeps the data finite.
+const glm::vec3 kFallbackNormal(0.0f, 1.0f, 0.0f);
+
+
+bool finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+glm::vec3 faceNormal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+    glm::vec3 n = glm::cross(b - a, c - a);
+    float length = glm::length(n);
+    return length > 0.0f && std::isfinite(length) ? n / length : kFallbackNormal;
+}
+
+int attribute(const tinygltf::Primitive& prim, const char* name) {
+    auto it = prim.attributes.find(name);
+    return it == prim.attributes.end() ? -1 : it->second;
+}
+
+uint32_t restartValue(int componentType) {
+    return componentType == kUnsignedByte    ? 0xFFu
+           : componentType == kUnsignedShort ? 0xFFFFu
+                                             : 0xFFFFFFFFu;
+}
+
+std::vector<uint32_t> readIndices(const tinygltf::Model& model, int64_t accessor,
+                                  size_t vertexCount, const std::string& file,
+                                  const std::string& pointer) {
+    if (accessor < 0) {
+        std::vector<uint32_t> sequence(vertexCount);
+        for (size_t i = 0; i < vertexCount; ++i) sequence[i] = uint32_t(i);
+        return sequence;
+    }
+    std::vector<uint32_t> indices = readAccessorIndices(model, size_t(accessor), file);
+    uint32_t restart = restartValue(model.accessors[size_t(accessor)].componentType);
+    for (size_t i = 0; i < indices.size(); ++i) {
+        if (indices[i] >= vertexCount || indices[i] == restart) {
+            throw InputError(
+                file, pointer + "/indices",
+                "index value " + std::to_string(indices[i]) + " at position " + std::to_string(i) +
+                    (indices[i] >= vertexCount ? " is out of range: POSITION has " +
+                                                     std::to_string(vertexCount) + " vertices"
+                                               : " is the primitive restart value (not allowed)"));
+        }
+    }
+    return indices;
+}
+
+// Replaces unusable normals by the area-weighted sum of the adjacent triangles' normals.
+size_t repairNormals(std::vector<glm::vec3>& normals, const std::vector<glm::vec3>& positions,
+                     const std::vector<uint32_t>& indices, size_t triangles, bool flip) {
+    std::vector<char> bad(normals.size(), 0);
+    size_t badCount = 0;
+    for (size_t i = 0; i < normals.size(); ++i) {
+        float length = glm::length(normals[i]);
+        if (!(std::isfinite(length) && length > 1e-20f)) {
+            bad[i] = 1;
+            ++badCount;
+        } else {
+            normals[i] /= length;
+        }
+    }
+    if (badCount == 0) return 0;
+    std::vector<glm::vec3> sums(normals.size(), glm::vec3(0.0f));
+    for (size_t t = 0; t < triangles; ++t) {
+        uint32_t a = indices[3 * t], b = indices[3 * t + 1], c = indices[3 * t + 2];
+        if (flip) std::swap(b, c);
+        // The cross product's length is twice the area: the weighting comes for free.
+        glm::vec3 n = glm::cross(positions[b] - positions[a], positions[c] - positions[a]);
+        if (!finite(n)) continue;
+        for (uint32_t v : {a, b, c}) sums[v] += n;
+    }
+    for (size_t i = 0; i < normals.size(); ++i) {
+        if (!bad[i]) continue;
+        float length = glm::length(sums[i]);
+        normals[i] = length > 0.0f && std::isfinite(length) ? sums[i] / length : kFallbackNormal;
+    }
+    return badCount;
+}
+
+}  // namespace
+
+void appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t primIndex,
+                     int64_t indexAccessor, const glm::dmat4& world, uint32_t materialId,
+                     const std::string& file, TriangleMesh& out, std::set<std::string>& warnings) {
+    const tinygltf::Primitive& prim = model.meshes.at(meshIndex).primitives.at(primIndex);
+    std::string pointer =
+        "/meshes/" + std::to_string(meshIndex) + "/primitives/" + std::to_string(primIndex);
+    int positionAccessor = attribute(prim, "POSITION");
+    std::vector<float> raw = readAccessorFloats(model, size_t(positionAccessor), 3, file);
+    size_t vertexCount = raw.size() / 3;
+    for (size_t i = 0; i < raw.size(); ++i) {
+        if (!std::isfinite(raw[i])) {
+            throw InputError(file, "/accessors/" + std::to_string(positionAccessor),
+                             "POSITION of vertex " + std::to_string(i / 3) + " is not finite");
+        }
+    }
+    std::vector<float> rawNormals, rawUvs;
+    if (int a = attribute(prim, "NORMAL"); a >= 0) {
+        rawNormals = readAccessorFloats(model, size_t(a), 3, file);
+    }
+    if (int a = attribute(prim, "TEXCOORD_0"); a >= 0) {
+        rawUvs = readAccessorFloats(model, size_t(a), 2, file);
+        for (size_t i = 0; i < rawUvs.size(); ++i) {
+            if (!std::isfinite(rawUvs[i])) {
+                throw InputError(
+                    file, "/accessors/" + std::to_string(a),
+                    "TEXCOORD_0 of vertex " + std::to_string(i / 2) + " is not finite");
+            }
+        }
+    }
+    if ((!rawNormals.empty() && rawNormals.size() != raw.size()) ||
+        (!rawUvs.empty() && rawUvs.size() / 2 != vertexCount)) {
+        throw InputError(file, pointer + "/attributes", "attribute counts differ");
+    }
+    std::vector<uint32_t> indices = readIndices(model, indexAccessor, vertexCount, file, pointer);
+    size_t triangles = indices.size() / 3;
+    if (indices.size() % 3 != 0) {
+        warnings.insert(pointer + ": " + std::to_string(indices.size() % 3) +
+                        " trailing vertices do not form a triangle and are ignored");
+    }
+
+    glm::dmat3 linear(world);
+    double det = glm::determinant(linear);
+    bool flip = det < 0.0;
+    glm::dmat3 normalMatrix = glm::transpose(glm::inverse(linear));
+    std::vector<glm::vec3> positions(vertexCount);
+    for (size_t i = 0; i < vertexCount; ++i) {
+        glm::dvec4 p = world * glm::dvec4(raw[3 * i], raw[3 * i + 1], raw[3 * i + 2], 1.0);
+        positions[i] = glm::vec3(p);
+        if (!finite(positions[i])) {
+            throw InputError(
+                file, pointer,
+                "vertex " + std::to_string(i) + " is not finite after the node transform");
+        }
+    }
+    auto uvAt = [&](size_t i) {
+        return rawUvs.empty() ? glm::vec2(0.0f) : glm::vec2(rawUvs[2 * i], rawUvs[2 * i + 1]);
+    };
+    uint64_t base = out.positions.size();
+    uint64_t added = rawNormals.empty() ? uint64_t(triangles) * 3 : vertexCount;
+    if (base + added > kMaxSceneVertices || out.triangles.size() + triangles > kMaxSceneTriangles) {
+        throw InputError(file, pointer,
+                         "the flattened scene exceeds fovea's limits of " +
+                             std::to_string(kMaxSceneTriangles) + " triangles and " +
+                             std::to_string(kMaxSceneVertices) + " vertices");
+    }
+    out.triangles.reserve(out.triangles.size() + triangles);
+    out.materialIds.insert(out.materialIds.end(), triangles, materialId);
+
+    if (rawNormals.empty()) {
+        // Flat normals need a vertex per corner: corners of different faces differ in normal.
+        for (size_t t = 0; t < triangles; ++t) {
+            uint32_t a = indices[3 * t], b = indices[3 * t + 1], c = indices[3 * t + 2];
+            if (flip) std::swap(b, c);
+            glm::vec3 n = faceNormal(positions[a], positions[b], positions[c]);
+            uint32_t first = uint32_t(out.positions.size());
+            for (uint32_t v : {a, b, c}) {
+                out.positions.push_back(positions[v]);
+                out.normals.push_back(n);
+                out.uvs.push_back(uvAt(v));
+            }
+            out.triangles.emplace_back(first, first + 1, first + 2);
+        }
+        return;
+    }
+    std::vector<glm::vec3> normals(vertexCount);
+    for (size_t i = 0; i < vertexCount; ++i) {
+        glm::dvec3 n(rawNormals[3 * i], rawNormals[3 * i + 1], rawNormals[3 * i + 2]);
+        normals[i] = glm::vec3(normalMatrix * n);
+    }
+    if (size_t fixed = repairNormals(normals, positions, indices, triangles, flip)) {
+        warnings.insert(pointer + ": " + std::to_string(fixed) +
+                        " zero or non-finite normals replaced by face normals");
+    }
+    for (size_t i = 0; i < vertexCount; ++i) {
+        out.positions.push_back(positions[i]);
+        out.normals.push_back(normals[i]);
+        out.uvs.push_back(uvAt(i));
+    }
+    for (size_t t = 0; t < triangles; ++t) {
+        uint32_t a = indices[3 * t], b = indices[3 * t + 1], c = indices[3 * t + 2];
+        if (flip) std::swap(b, c);
+        out.triangles.emplace_back(uint32_t(base) + a, uint32_t(base) + b, uint32_t(base) + c);
+    }
+}
+
+}  // namespace fovea::scene::gltf

@@ -1,0 +1,56 @@
+#include "core/scene/Scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/graph/Pass.h"
+
+namespace fovea::scene {
+
+namespace {
+
+constexpr float kDefaultYfov = 0.7853982f;  // 45 degrees, docs/scenes.md "Default camera"
+
+}  // namespace
+
+uint32_t Scene::features() const {
+    uint32_t bits = 0;
+    if (!mesh.triangles.empty()) bits |= graph::kSceneGeometry;
+    // Only materials some triangle uses count: an emissive or textured material nothing draws
+    // gives a pass nothing to work on.
+    std::vector<char> used(materials.size(), 0);
+    for (uint32_t id : mesh.materialIds) {
+        if (id < used.size()) used[id] = 1;
+    }
+    for (size_t i = 0; i < materials.size(); ++i) {
+        if (!used[i]) continue;
+        const Material& m = materials[i];
+        if (m.isEmissive()) bits |= graph::kSceneEmissive;
+        if (m.baseColorTexture >= 0 || m.emissiveTexture >= 0 || m.metallicRoughnessTexture >= 0) {
+            bits |= graph::kSceneTextures;
+        }
+    }
+    if (!lights.empty()) bits |= graph::kScenePunctual;
+    return bits;
+}
+
+CameraDesc Scene::defaultCamera() const {
+    CameraDesc camera;
+    camera.name = "default";
+    camera.yfov = kDefaultYfov;
+    if (bounds.empty()) return camera;
+    glm::vec3 center = bounds.center();
+    float radius = 0.5f * glm::length(bounds.extent());
+    // A point-sized scene still needs a distance to look from; 1 unit keeps the numbers sane.
+    if (!(radius > 0.0f) || !std::isfinite(radius)) radius = 1.0f;
+    // The sphere of radius r seen from distance d fills the vertical FOV when r / d = sin(fov/2).
+    float distance = radius / std::sin(0.5f * camera.yfov);
+    camera.position = center + glm::vec3(0.0f, 0.0f, distance);
+    camera.target = center;
+    camera.up = glm::vec3(0.0f, 1.0f, 0.0f);
+    // The near plane scales with the scene (mm and m files alike) and stays in front of it.
+    camera.znear = std::max(1e-3f * radius, 1e-6f);
+    return camera;
+}
+
+}  // namespace fovea::scene

@@ -1,0 +1,100 @@
+// The CPU-side scene every loader produces and every GPU upload consumes: one flattened
+// world-space triangle mesh (node transforms baked in), glTF metallic-roughness materials,
+// decoded textures, punctual lights and cameras. Flattening keeps the BVH single-level and the
+// shaders free of instance indirection; the scenes of the documents are static.
+#pragma once
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace fovea::scene {
+
+struct Bounds {
+    glm::vec3 min{std::numeric_limits<float>::max()};
+    glm::vec3 max{-std::numeric_limits<float>::max()};
+    void grow(const glm::vec3& p) {
+        min = glm::min(min, p);
+        max = glm::max(max, p);
+    }
+    bool empty() const { return min.x > max.x; }
+    glm::vec3 center() const { return 0.5f * (min + max); }
+    glm::vec3 extent() const { return empty() ? glm::vec3(0.0f) : max - min; }
+};
+
+// glTF 2.0 metallic-roughness material. Texture fields index Scene::textures (-1 = none).
+struct Material {
+    std::string name;
+    glm::vec4 baseColor{1.0f};   // linear RGBA factor
+    int baseColorTexture = -1;   // sRGB-encoded texels
+    glm::vec3 emissive{0.0f};    // linear factor, already multiplied by emissive_strength
+    int emissiveTexture = -1;    // sRGB-encoded texels
+    float metallic = 1.0f;       // glTF defaults
+    float roughness = 1.0f;
+    int metallicRoughnessTexture = -1;  // linear; G = roughness, B = metallic
+    bool doubleSided = false;
+    bool isEmissive() const { return emissive.r > 0.0f || emissive.g > 0.0f || emissive.b > 0.0f; }
+};
+
+// Decoded 8-bit RGBA texels, row-major, top row first (glTF UV origin is the top-left).
+struct Texture {
+    std::string name;
+    uint32_t width = 0, height = 0;
+    std::vector<uint8_t> rgba8;
+};
+
+// KHR_lights_punctual, in world space. Intensity units as the extension: candela for point and
+// spot lights, lux for directional ones.
+struct Light {
+    enum class Type : uint32_t { Point = 0, Spot = 1, Directional = 2 };
+    Type type = Type::Point;
+    std::string name;
+    glm::vec3 position{0.0f};
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};  // the way the light shines (normalized)
+    glm::vec3 color{1.0f};
+    float intensity = 1.0f;
+    float range = 0.0f;  // 0 = infinite
+    float innerConeAngle = 0.0f;
+    float outerConeAngle = 0.7853982f;  // pi/4, the extension's default
+};
+
+// A pinhole camera in world space.
+struct CameraDesc {
+    std::string name;
+    glm::vec3 position{0.0f, 0.0f, 1.0f};
+    glm::vec3 target{0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float yfov = 0.8f;  // vertical field of view, radians
+    float znear = 0.01f;
+};
+
+// Flattened world-space triangles: positions/normals/uvs are per vertex, `triangles` index them,
+// `materialIds` has one entry per triangle.
+struct TriangleMesh {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;  // normalized; generated flat when the file has none
+    std::vector<glm::vec2> uvs;      // (0,0) when the file has none
+    std::vector<glm::uvec3> triangles;
+    std::vector<uint32_t> materialIds;
+    size_t triangleCount() const { return triangles.size(); }
+};
+
+struct Scene {
+    std::string source;  // file path or "builtin:<name>"
+    TriangleMesh mesh;
+    std::vector<Material> materials;  // never empty once loaded (a default grey one is added)
+    std::vector<Texture> textures;
+    std::vector<Light> lights;
+    std::vector<CameraDesc> cameras;  // from the file; may be empty
+    std::vector<std::string> warnings;  // broken entries nothing uses, ignored optional extensions
+    Bounds bounds;                      // of mesh.positions
+
+    // graph::SceneFeature bits (core/graph/Pass.h) this scene provides.
+    uint32_t features() const;
+    // A camera that frames the bounding box (docs/scenes.md): looks down -Z at the box centre
+    // from a distance where the box's bounding sphere fits a 45 degree vertical FOV.
+    CameraDesc defaultCamera() const;
+};
+
+}  // namespace fovea::scene

@@ -1,0 +1,254 @@
+#include "core/scene/SceneGpu.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "core/graph/Pass.h"
+#include "core/util/DidYouMean.h"
+#include "core/util/Error.h"
+#include "core/vk/ComputePipeline.h"
+#include "core/vk/Context.h"
+#include "core/vk/Resources.h"
+
+namespace fovea::scene {
+namespace {
+
+// Empty data still becomes a valid binding: Vulkan buffers cannot be empty, and a shader that
+// keeps a feature compiled in may declare the buffer without ever reading it.
+constexpr size_t kMinBufferBytes = 16;
+
+const std::vector<std::string> kResourceNames = {
+    "scene_info",      "scene_vertices", "scene_triangles", "scene_bvh",    "scene_bvh_triangles",
+    "scene_materials", "scene_textures", "scene_texels",    "scene_lights", "scene_emitters"};
+
+template <class T>
+size_t bytesOf(const std::vector<T>& v) {
+    return v.size() * sizeof(T);
+}
+
+int validTexture(int index, const std::vector<Texture>& textures) {
+    return index >= 0 && size_t(index) < textures.size() ? index : -1;
+}
+
+bool hasTexels(const Texture& t) {
+    const size_t texels = size_t(t.width) * t.height;
+    return texels > 0 && t.rgba8.size() >= texels * 4;
+}
+
+layout::Light packLight(const Light& light) {
+    layout::Light out{};
+    out.position = light.position;
+    out.range = std::isfinite(light.range) ? std::max(0.0f, light.range) : 0.0f;
+    const float len = glm::length(light.direction);
+    // A zero or broken direction falls back to the extension's default (-Z) instead of NaN.
+    out.direction =
+        len > 0.0f && std::isfinite(len) ? light.direction / len : glm::vec3(0.0f, 0.0f, -1.0f);
+    out.type = static_cast<uint32_t>(light.type);
+    out.intensity = light.color * light.intensity;
+    // KHR_lights_punctual's reference cone falloff; the max() keeps equal cones finite.
+    const float cosOuter = std::cos(light.outerConeAngle);
+    const float cosInner = std::cos(light.innerConeAngle);
+    out.spotScale = 1.0f / std::max(0.001f, cosInner - cosOuter);
+    out.spotOffset = -cosOuter * out.spotScale;
+    return out;
+}
+
+}  // namespace
+
+SceneGpu::SceneGpu(gpu::Context& context, const Scene& scene, const BvhBuildOptions& bvhOptions) {
+    const Bvh bvh(scene.mesh, bvhOptions);
+    const LightTable lights(scene, bvh.triangleOrder());
+    upload(context, scene, bvh, lights);
+}
+
+SceneGpu::SceneGpu(gpu::Context& context, const Scene& scene, const Bvh& bvh,
+                   const LightTable& lights) {
+    upload(context, scene, bvh, lights);
+}
+
+SceneGpu::~SceneGpu() = default;
+
+std::vector<std::string> SceneGpu::resourceNames() {
+    return kResourceNames;
+}
+
+void SceneGpu::addBuffer(gpu::Context& context, const std::string& name, const void* data,
+                         size_t bytes, bool uniform) {
+    const vk::BufferUsageFlags usage = (uniform ? vk::BufferUsageFlagBits::eUniformBuffer
+                                                : vk::BufferUsageFlagBits::eStorageBuffer) |
+                                       vk::BufferUsageFlagBits::eTransferSrc |
+                                       vk::BufferUsageFlagBits::eTransferDst;
+    // Round up to 16 so the tail of a vec4 array never straddles the end.
+    const size_t size = std::max(kMinBufferBytes, (bytes + 15) / 16 * 16);
+    auto buffer = std::make_unique<gpu::Buffer>(context, size, usage, false, name);
+    if (bytes > 0) buffer->upload(context, data, bytes);
+    mBuffers.emplace_back(name, std::move(buffer));
+}
+
+void SceneGpu::upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
+                      const LightTable& lights) {
+    const TriangleMesh& mesh = scene.mesh;
+    const std::vector<uint32_t>& order = bvh.triangleOrder();
+    if (order.size() != mesh.triangles.size())
+        throw RuntimeError("SceneGpu: the BVH was built for " + std::to_string(order.size()) +
+                           " triangles but the scene has " + std::to_string(mesh.triangles.size()));
+    if (mesh.materialIds.size() != mesh.triangles.size())
+        throw RuntimeError("SceneGpu: " + std::to_string(mesh.materialIds.size()) +
+                           " material ids for " + std::to_string(mesh.triangles.size()) +
+                           " triangles");
+    mTriangleOrder = order;
+    mBvhStats = bvh.stats();
+
+    // Materials: glTF's default material stands in when a hand-built scene has none.
+    const std::vector<Material> fallback(1);
+    const std::vector<Material>& materials = scene.materials.empty() ? fallback : scene.materials;
+    bool textured = false;
+    std::vector<bool> textureUsed(scene.textures.size(), false);
+    std::vector<layout::Material> gpuMaterials;
+    gpuMaterials.reserve(materials.size());
+    const std::vector<double>& density = lights.materialPowerDensity();
+    for (size_t m = 0; m < materials.size(); ++m) {
+        const Material& mat = materials[m];
+        layout::Material g{};
+        g.baseColor = mat.baseColor;
+        g.emissive = glm::vec4(mat.emissive, m < density.size() ? float(density[m]) : 0.0f);
+        g.params = glm::vec4(mat.metallic, mat.roughness, mat.doubleSided ? 1.0f : 0.0f, 0.0f);
+        g.textures = glm::ivec4(validTexture(mat.baseColorTexture, scene.textures),
+                                validTexture(mat.metallicRoughnessTexture, scene.textures),
+                                validTexture(mat.emissiveTexture, scene.textures), -1);
+        for (int k = 0; k < 3; ++k) {
+            if (g.textures[k] < 0) continue;
+            textureUsed[g.textures[k]] = true;
+            textured = textured || hasTexels(scene.textures[g.textures[k]]);
+        }
+        gpuMaterials.push_back(g);
+    }
+
+    // Geometry in BVH order.
+    std::vector<layout::Vertex> vertices(mesh.positions.size());
+    for (size_t v = 0; v < vertices.size(); ++v) {
+        // Loaders always fill normals and uvs; hand-built meshes may not (zero normal = the
+        // shader falls back to the geometric normal).
+        const glm::vec3 n = v < mesh.normals.size() ? mesh.normals[v] : glm::vec3(0.0f);
+        const glm::vec2 uv = v < mesh.uvs.size() ? mesh.uvs[v] : glm::vec2(0.0f);
+        vertices[v] = {glm::vec4(mesh.positions[v], uv.x), glm::vec4(n, uv.y)};
+    }
+    std::vector<layout::Triangle> triangles(order.size());
+    std::vector<layout::TrianglePositions> positions(order.size());
+    for (size_t i = 0; i < order.size(); ++i) {
+        const uint32_t t = order[i];
+        const glm::uvec3 tri = mesh.triangles[t];  // indices were checked by the BVH build
+        const uint32_t material = mesh.materialIds[t];
+        if (material >= materials.size())
+            throw RuntimeError("SceneGpu: triangle " + std::to_string(t) + " uses material " +
+                               std::to_string(material) + " of " +
+                               std::to_string(materials.size()));
+        triangles[i] = {tri, material};
+        const glm::vec3 v0 = mesh.positions[tri.x];
+        positions[i] = {glm::vec4(v0, 0.0f), glm::vec4(mesh.positions[tri.y] - v0, 0.0f),
+                        glm::vec4(mesh.positions[tri.z] - v0, 0.0f)};
+    }
+
+    // Textures: every used one packed into one RGBA8 texel array (no descriptor indexing on
+    // lavapipe, see docs/scene-gpu.md); unused ones keep a table entry without texels so
+    // material indices stay Scene indices.
+    std::vector<layout::Texture> textureTable(scene.textures.size(), layout::Texture{});
+    size_t texelCount = 0;
+    for (size_t t = 0; t < scene.textures.size(); ++t)
+        if (textureUsed[t] && hasTexels(scene.textures[t]))
+            texelCount += size_t(scene.textures[t].width) * scene.textures[t].height;
+    const uint64_t maxRange = context.limits().maxStorageBufferRange;
+    if (texelCount * 4 > maxRange || texelCount > UINT32_MAX)
+        throw RuntimeError("SceneGpu: scene textures need " + std::to_string(texelCount * 4 >> 20) +
+                           " MiB of texels but '" + context.deviceName() + "' binds at most " +
+                           std::to_string(maxRange >> 20) + " MiB per storage buffer");
+    std::vector<uint32_t> texels(texelCount);
+    size_t offset = 0;
+    for (size_t t = 0; t < scene.textures.size(); ++t) {
+        const Texture& tex = scene.textures[t];
+        if (!textureUsed[t] || !hasTexels(tex)) continue;
+        const size_t count = size_t(tex.width) * tex.height;
+        // Bytes R,G,B,A become one little-endian uint: unpackUnorm4x8 reads R from the low byte.
+        std::memcpy(texels.data() + offset, tex.rgba8.data(), count * 4);
+        textureTable[t] = {static_cast<uint32_t>(offset), tex.width, tex.height, 0u};
+        offset += count;
+    }
+
+    std::vector<layout::Light> gpuLights;
+    gpuLights.reserve(scene.lights.size());
+    for (const Light& light : scene.lights) gpuLights.push_back(packLight(light));
+
+    const Bounds& bounds = bvh.bounds();
+    mInfo = layout::Info{};
+    mInfo.vertexCount = static_cast<uint32_t>(vertices.size());
+    mInfo.triangleCount = static_cast<uint32_t>(triangles.size());
+    mInfo.nodeCount = static_cast<uint32_t>(bvh.nodes().size());
+    mInfo.materialCount = static_cast<uint32_t>(gpuMaterials.size());
+    mInfo.textureCount = static_cast<uint32_t>(textureTable.size());
+    mInfo.texelCount = static_cast<uint32_t>(texelCount);
+    mInfo.lightCount = static_cast<uint32_t>(gpuLights.size());
+    mInfo.emitterCount = static_cast<uint32_t>(lights.entries().size());
+    mInfo.emissiveTriangleCount = lights.emissiveTriangleCount();
+    mInfo.invalidTriangles = bvh.stats().invalidTriangles;
+    mInfo.totalPower = static_cast<float>(lights.totalPower());
+    mInfo.emissivePower = static_cast<float>(lights.emissivePower());
+    mInfo.punctualPower = static_cast<float>(lights.punctualPower());
+    if (!bounds.empty()) {
+        mInfo.boundsMin = glm::vec4(bounds.min, 0.0f);
+        mInfo.boundsMax = glm::vec4(bounds.max, 0.0f);
+        mInfo.radius = 0.5f * glm::length(bounds.extent());
+    }
+
+    mFeatures = 0;
+    if (!triangles.empty()) mFeatures |= graph::kSceneGeometry;
+    if (lights.emissiveTriangleCount() > 0) mFeatures |= graph::kSceneEmissive;
+    if (textured) mFeatures |= graph::kSceneTextures;
+    if (lights.punctualLightCount() > 0) mFeatures |= graph::kScenePunctual;
+    mInfo.features = mFeatures;
+
+    mBuffers.clear();
+    addBuffer(context, "scene_info", &mInfo, sizeof(mInfo), true);
+    addBuffer(context, "scene_vertices", vertices.data(), bytesOf(vertices));
+    addBuffer(context, "scene_triangles", triangles.data(), bytesOf(triangles));
+    addBuffer(context, "scene_bvh", bvh.nodes().data(), bytesOf(bvh.nodes()));
+    addBuffer(context, "scene_bvh_triangles", positions.data(), bytesOf(positions));
+    addBuffer(context, "scene_materials", gpuMaterials.data(), bytesOf(gpuMaterials));
+    addBuffer(context, "scene_textures", textureTable.data(), bytesOf(textureTable));
+    addBuffer(context, "scene_texels", texels.data(), bytesOf(texels));
+    addBuffer(context, "scene_lights", gpuLights.data(), bytesOf(gpuLights));
+    addBuffer(context, "scene_emitters", lights.entries().data(), bytesOf(lights.entries()));
+}
+
+void SceneGpu::bind(gpu::ComputePipeline& pipeline) const {
+    for (const auto& [name, buffer] : mBuffers)
+        if (pipeline.hasBinding(name)) pipeline.bind(name, *buffer);
+}
+
+std::vector<std::pair<std::string, std::string>> SceneGpu::defines() const {
+    auto flag = [&](uint32_t bit) { return std::string((mFeatures & bit) ? "1" : "0"); };
+    return {{"SCENE_HAS_TEXTURES", flag(graph::kSceneTextures)},
+            {"SCENE_HAS_EMISSIVE", flag(graph::kSceneEmissive)},
+            {"SCENE_HAS_PUNCTUAL", flag(graph::kScenePunctual)}};
+}
+
+const gpu::Buffer& SceneGpu::buffer(std::string_view name) const {
+    for (const auto& [n, buffer] : mBuffers)
+        if (n == name) return *buffer;
+    throw RuntimeError("SceneGpu has no buffer '" + std::string(name) + "'" +
+                       didYouMean(name, kResourceNames));
+}
+
+std::vector<std::pair<std::string, uint64_t>> SceneGpu::memoryStats() const {
+    std::vector<std::pair<std::string, uint64_t>> out;
+    for (const auto& [name, buffer] : mBuffers) out.emplace_back(name, buffer->size());
+    return out;
+}
+
+uint64_t SceneGpu::totalBytes() const {
+    uint64_t total = 0;
+    for (const auto& [name, buffer] : mBuffers) total += buffer->size();
+    return total;
+}
+
+}  // namespace fovea::scene

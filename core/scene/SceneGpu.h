@@ -1,0 +1,137 @@
+// A Scene on the GPU: geometry, BVH, materials, textures and lights in storage buffers with
+// fixed names that shaders declare by including shaders/common/scene_data.glsl. Passes call
+// bind() on their pipelines and compile with defines() so absent features compile out.
+// Layouts and rationale: docs/scene-gpu.md.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "core/scene/Bvh.h"
+#include "core/scene/LightTable.h"
+#include "core/scene/Scene.h"
+
+namespace fovea::gpu {
+class Buffer;
+class ComputePipeline;
+class Context;
+}  // namespace fovea::gpu
+
+namespace fovea::scene {
+
+// The std430/std140 element layouts, mirrored field by field in shaders/common/scene_data.glsl.
+// vec3 + scalar pairs share one 16-byte slot in both languages; the asserts pin every size.
+namespace layout {
+
+struct Vertex {           // scene_vertices
+    glm::vec4 positionU;  // xyz position, w = uv.x
+    glm::vec4 normalV;    // xyz shading normal, w = uv.y
+};
+struct Triangle {  // scene_triangles, in Bvh::triangleOrder()
+    glm::uvec3 indices;
+    uint32_t material;
+};
+struct TrianglePositions {  // scene_bvh_triangles: what the intersection loop reads
+    glm::vec4 v0;           // xyz; w unused
+    glm::vec4 e1;           // v1 - v0
+    glm::vec4 e2;           // v2 - v0
+};
+struct Material {         // scene_materials
+    glm::vec4 baseColor;  // linear RGBA factor
+    glm::vec4 emissive;   // rgb linear factor; w = emitted power per unit area (LightTable)
+    glm::vec4 params;     // x metallic, y roughness, z doubleSided (0/1), w unused
+    glm::ivec4 textures;  // x baseColor (sRGB), y metallicRoughness (linear), z emissive (sRGB);
+                          // -1 = none
+};
+struct Texture {      // scene_textures
+    uint32_t offset;  // first texel in scene_texels
+    uint32_t width;   // 0 = no texels (sampling returns 1)
+    uint32_t height;
+    uint32_t flags;  // reserved
+};
+struct Light {  // scene_lights (punctual)
+    glm::vec3 position;
+    float range;          // 0 = infinite
+    glm::vec3 direction;  // the way the light shines, normalized
+    uint32_t type;        // Scene Light::Type
+    glm::vec3 intensity;  // color * intensity
+    float spotScale;      // KHR_lights_punctual cone attenuation: saturate(cd * scale + offset)^2
+    float spotOffset;
+    float pad[3];
+};
+struct Info {  // scene_info (uniform; std140 == std430 for this member order)
+    uint32_t vertexCount, triangleCount, nodeCount, materialCount;
+    uint32_t textureCount, texelCount, lightCount, emitterCount;
+    uint32_t emissiveTriangleCount, features, invalidTriangles, pad0;
+    float totalPower, emissivePower, punctualPower, radius;  // radius of the bounding sphere
+    glm::vec4 boundsMin;                                     // xyz; w unused
+    glm::vec4 boundsMax;
+};
+
+static_assert(sizeof(Vertex) == 32);
+static_assert(sizeof(Triangle) == 16);
+static_assert(sizeof(TrianglePositions) == 48);
+static_assert(sizeof(Material) == 64);
+static_assert(sizeof(Texture) == 16);
+static_assert(sizeof(Light) == 64 && offsetof(Light, range) == 12 && offsetof(Light, type) == 28 &&
+              offsetof(Light, spotScale) == 44 && offsetof(Light, spotOffset) == 48);
+static_assert(sizeof(Info) == 96 && offsetof(Info, totalPower) == 48 &&
+              offsetof(Info, boundsMin) == 64);
+
+}  // namespace layout
+
+class SceneGpu {
+public:
+    // Builds the BVH and the light table, then uploads. Throws RuntimeError for inconsistent
+    // meshes (indices or material ids out of range) and for texel data beyond the device's
+    // storage-buffer range.
+    SceneGpu(gpu::Context& context, const Scene& scene, const BvhBuildOptions& bvhOptions = {});
+    // With a prebuilt BVH and a light table made with bvh.triangleOrder().
+    SceneGpu(gpu::Context& context, const Scene& scene, const Bvh& bvh, const LightTable& lights);
+    ~SceneGpu();
+    SceneGpu(const SceneGpu&) = delete;
+    SceneGpu& operator=(const SceneGpu&) = delete;
+
+    // Binds every scene_* buffer the pipeline declares (others are skipped, so a shader compiled
+    // without textures needs no texel buffer).
+    void bind(gpu::ComputePipeline& pipeline) const;
+    // scene_info, scene_vertices, scene_triangles, scene_bvh, scene_bvh_triangles,
+    // scene_materials, scene_textures, scene_texels, scene_lights, scene_emitters.
+    static std::vector<std::string> resourceNames();
+    // graph::SceneFeature bits of what was uploaded: geometry (any triangle), emissive (an
+    // emitting triangle), textures (a material samples a texture with texels), punctual (a
+    // light with power > 0).
+    uint32_t features() const { return mFeatures; }
+    // SCENE_HAS_TEXTURES / SCENE_HAS_EMISSIVE / SCENE_HAS_PUNCTUAL = "0" or "1".
+    std::vector<std::pair<std::string, std::string>> defines() const;
+
+    // Throws RuntimeError (with did-you-mean) for a name not in resourceNames().
+    const gpu::Buffer& buffer(std::string_view name) const;
+    // Allocated bytes per buffer (empty data still gets 16 bytes), in resourceNames() order.
+    std::vector<std::pair<std::string, uint64_t>> memoryStats() const;
+    uint64_t totalBytes() const;
+
+    const BvhStats& bvhStats() const { return mBvhStats; }
+    // GPU triangle i is mesh triangle triangleOrder()[i]; hit ids are GPU triangle indices.
+    const std::vector<uint32_t>& triangleOrder() const { return mTriangleOrder; }
+    const layout::Info& info() const { return mInfo; }
+
+private:
+    void upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
+                const LightTable& lights);
+    void addBuffer(gpu::Context& context, const std::string& name, const void* data, size_t bytes,
+                   bool uniform = false);
+
+    std::vector<std::pair<std::string, std::unique_ptr<gpu::Buffer>>> mBuffers;
+    std::vector<uint32_t> mTriangleOrder;
+    BvhStats mBvhStats;
+    layout::Info mInfo{};
+    uint32_t mFeatures = 0;
+};
+
+}  // namespace fovea::scene

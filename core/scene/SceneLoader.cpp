@@ -1,0 +1,36 @@
+#include "core/scene/SceneLoader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include "core/scene/BuiltinScenes.h"
+#include "core/scene/GltfLoader.h"
+#include "core/util/Error.h"
+
+namespace fovea::scene {
+
+Scene loadScene(const std::string& spec) {
+    if (spec.rfind("builtin:", 0) == 0) return loadBuiltinScene(spec);
+    if (spec.empty())
+        throw InputError("", "", "no scene given (a .gltf/.glb path or builtin:<name>)");
+    std::filesystem::path path(spec);
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    if (extension != ".gltf" && extension != ".glb") {
+        std::string names;
+        for (const std::string& n : builtinSceneNames()) names += ", " + n;
+        throw InputError(spec, "",
+                         "unsupported scene file type '" + extension +
+                             "' (expected .gltf, .glb or one of the built-in scenes" + names + ")");
+    }
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) {
+        throw InputError(
+            spec, "", std::filesystem::exists(path, ec) ? "not a regular file" : "file not found");
+    }
+    return loadGltf(path);
+}
+
+}  // namespace fovea::scene

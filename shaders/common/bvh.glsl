@@ -1,0 +1,208 @@
+// Ray queries against the scene BVH (core/scene/Bvh.h) in plain compute: lavapipe has no
+// ray-tracing extensions. Closest hit walks near child first with a stack of far children and
+// their entry distances; occlusion stops at the first hit. Triangles: Moeller-Trumbore in its
+// division-free form (one division per accepted hit). Rays are `origin + t * direction` with
+// 0 <= tMin < tMax; the direction need not be normalized (t is in its units).
+#ifndef FOVEA_BVH_GLSL
+#define FOVEA_BVH_GLSL
+
+#include "scene_data.glsl"
+
+const uint kBvhNoHit = 0xFFFFFFFFu;
+const float kBvhMiss = 3.4e38;  // box entry distance reported for a miss
+
+struct BvhHit {
+    float t;
+    uint triangle;      // GPU triangle index (scene_triangles), kBvhNoHit on a miss
+    vec2 barycentrics;  // weights of vertices 1 and 2; vertex 0 gets 1 - x - y
+};
+
+// 1 / direction with zero components replaced by a tiny signed value, so slab distances are
+// never 0 * inf = NaN (they may be +-inf, which the min/max logic handles).
+vec3 bvhSafeInverse(vec3 d) {
+    const float kTiny = 1e-30;
+    vec3 safe = vec3(abs(d.x) < kTiny ? (d.x < 0.0 ? -kTiny : kTiny) : d.x,
+                     abs(d.y) < kTiny ? (d.y < 0.0 ? -kTiny : kTiny) : d.y,
+                     abs(d.z) < kTiny ? (d.z < 0.0 ? -kTiny : kTiny) : d.z);
+    return 1.0 / safe;  // |safe| >= kTiny on every axis
+}
+
+// Entry distance of the ray into [bmin, bmax] clipped to [tMin, tMax], or kBvhMiss. The far
+// distance is widened by a few ulps (pbrt's 1 + 2 gamma(3)) so rounding in the slab products
+// never rejects a box whose face holds the triangle the ray hits.
+float bvhBoxEntry(vec3 bmin, vec3 bmax, vec3 origin, vec3 invDir, float tMin, float tMax) {
+    vec3 t0 = (bmin - origin) * invDir;
+    vec3 t1 = (bmax - origin) * invDir;
+    vec3 tNear3 = min(t0, t1);
+    vec3 tFar3 = max(t0, t1);
+    float tNear = max(max(tNear3.x, tNear3.y), max(tNear3.z, tMin));
+    float tFar = min(min(tFar3.x, tFar3.y), min(tFar3.z, tMax)) * 1.0000004;
+    return tNear <= tFar ? tNear : kBvhMiss;
+}
+
+// Ray vs triangle (v0, e1 = v1 - v0, e2 = v2 - v0). Edges count as inside, so a ray through a
+// shared edge hits one of the two triangles. On a hit in (tMin, tMax) returns true with t and
+// barycentrics; degenerate triangles and rays in the triangle's plane never hit.
+bool bvhIntersectTriangle(vec3 origin, vec3 direction, vec3 v0, vec3 e1, vec3 e2, float tMin,
+                          float tMax, out float t, out vec2 barycentrics) {
+    t = 0.0;
+    barycentrics = vec2(0.0);
+    vec3 p = cross(direction, e2);
+    float det = dot(e1, p);
+    float s = det < 0.0 ? -1.0 : 1.0;
+    float absDet = abs(det);
+    vec3 tv = origin - v0;
+    float u = dot(tv, p) * s;
+    // Written as positive tests so NaN (from huge coordinates) rejects.
+    if (!(u >= 0.0 && u <= absDet)) return false;
+    vec3 q = cross(tv, e1);
+    float v = dot(direction, q) * s;
+    if (!(v >= 0.0 && u + v <= absDet)) return false;
+    float tScaled = dot(e2, q) * s;
+    if (!(absDet > 0.0)) return false;
+    float inv = 1.0 / absDet;  // absDet > 0; a denormal may give inf, then t is inf or NaN and
+                               // fails the range test below
+    float tt = tScaled * inv;
+    if (!(tt > tMin && tt < tMax)) return false;
+    t = tt;
+    barycentrics = vec2(u, v) * inv;
+    return true;
+}
+
+bool bvhIntersectStoredTriangle(uint triangle, vec3 origin, vec3 direction, float tMin,
+                                float tMax, out float t, out vec2 barycentrics) {
+    uint base = 3u * triangle;
+    return bvhIntersectTriangle(origin, direction, scene_bvh_triangles.positions[base].xyz,
+                                scene_bvh_triangles.positions[base + 1u].xyz,
+                                scene_bvh_triangles.positions[base + 2u].xyz, tMin, tMax, t,
+                                barycentrics);
+}
+
+// Closest triangle hit in (tMin, tMax). On a miss returns false and hit.triangle = kBvhNoHit.
+bool bvhClosestHit(vec3 origin, vec3 direction, float tMin, float tMax, out BvhHit hit) {
+    hit.t = tMax;
+    hit.triangle = kBvhNoHit;
+    hit.barycentrics = vec2(0.0);
+    vec3 invDir = bvhSafeInverse(direction);
+    BvhNode root = scene_bvh.nodes[0];
+    if (bvhBoxEntry(root.boundsMin, root.boundsMax, origin, invDir, tMin, tMax) == kBvhMiss)
+        return false;
+
+    // Entries <= depth of the current node <= kBvhMaxDepth (the build caps the depth), so
+    // the stack cannot overflow; the bound check only guards against a corrupt buffer.
+    uint stackNode[kBvhMaxDepth];
+    float stackEntry[kBvhMaxDepth];
+    uint sp = 0u;
+    uint nodeIndex = 0u;
+    while (true) {
+        BvhNode node = scene_bvh.nodes[nodeIndex];
+        if (node.count != kBvhInternalNode) {
+            for (uint i = node.index; i < node.index + node.count; ++i) {
+                float t;
+                vec2 bary;
+                if (bvhIntersectStoredTriangle(i, origin, direction, tMin, hit.t, t, bary)) {
+                    hit.t = t;
+                    hit.triangle = i;
+                    hit.barycentrics = bary;
+                }
+            }
+        } else {
+            uint left = nodeIndex + 1u;
+            uint right = node.index;
+            BvhNode l = scene_bvh.nodes[left];
+            BvhNode r = scene_bvh.nodes[right];
+            float tl = bvhBoxEntry(l.boundsMin, l.boundsMax, origin, invDir, tMin, hit.t);
+            float tr = bvhBoxEntry(r.boundsMin, r.boundsMax, origin, invDir, tMin, hit.t);
+            bool hitL = tl != kBvhMiss;
+            bool hitR = tr != kBvhMiss;
+            if (hitL && hitR) {
+                bool leftFirst = tl <= tr;
+                if (sp < kBvhMaxDepth) {
+                    stackNode[sp] = leftFirst ? right : left;
+                    stackEntry[sp] = leftFirst ? tr : tl;
+                    ++sp;
+                }
+                nodeIndex = leftFirst ? left : right;
+                continue;
+            }
+            if (hitL || hitR) {
+                nodeIndex = hitL ? left : right;
+                continue;
+            }
+        }
+        // Pop the nearest pending subtree that can still hold a closer hit.
+        bool found = false;
+        while (sp > 0u && !found) {
+            --sp;
+            if (stackEntry[sp] <= hit.t) {
+                nodeIndex = stackNode[sp];
+                found = true;
+            }
+        }
+        if (!found) break;
+    }
+    return hit.triangle != kBvhNoHit;
+}
+
+// True when any triangle lies on the ray within (tMin, tMax): shadow rays pass the light's
+// distance (slightly shortened) as tMax.
+bool bvhOccluded(vec3 origin, vec3 direction, float tMin, float tMax) {
+    vec3 invDir = bvhSafeInverse(direction);
+    uint stackNode[kBvhMaxDepth];
+    uint sp = 0u;
+    BvhNode root = scene_bvh.nodes[0];
+    if (bvhBoxEntry(root.boundsMin, root.boundsMax, origin, invDir, tMin, tMax) == kBvhMiss)
+        return false;
+    uint nodeIndex = 0u;
+    while (true) {
+        BvhNode node = scene_bvh.nodes[nodeIndex];
+        if (node.count != kBvhInternalNode) {
+            for (uint i = node.index; i < node.index + node.count; ++i) {
+                float t;
+                vec2 bary;
+                if (bvhIntersectStoredTriangle(i, origin, direction, tMin, tMax, t, bary))
+                    return true;
+            }
+        } else {
+            uint left = nodeIndex + 1u;
+            uint right = node.index;
+            BvhNode l = scene_bvh.nodes[left];
+            BvhNode r = scene_bvh.nodes[right];
+            bool hitL =
+                bvhBoxEntry(l.boundsMin, l.boundsMax, origin, invDir, tMin, tMax) != kBvhMiss;
+            bool hitR =
+                bvhBoxEntry(r.boundsMin, r.boundsMax, origin, invDir, tMin, tMax) != kBvhMiss;
+            if (hitL && hitR) {
+                if (sp < kBvhMaxDepth) stackNode[sp++] = right;  // see bvhClosestHit
+                nodeIndex = left;
+                continue;
+            }
+            if (hitL || hitR) {
+                nodeIndex = hitL ? left : right;
+                continue;
+            }
+        }
+        if (sp == 0u) break;
+        nodeIndex = stackNode[--sp];
+    }
+    return false;
+}
+
+// Origin for a ray leaving a surface at p with geometric normal n (pointing to the side the
+// ray leaves from): Waechter & Binder, "A Fast and Robust Method for Avoiding Self-Intersection"
+// (Ray Tracing Gems, ch. 6). Integer ulp offsets scale with |p|, so it works at any scene scale;
+// rays then use tMin = 0.
+vec3 bvhOffsetRay(vec3 p, vec3 n) {
+    const float kOrigin = 1.0 / 32.0;
+    const float kFloatScale = 1.0 / 65536.0;
+    const float kIntScale = 256.0;
+    ivec3 ofi = ivec3(kIntScale * n);
+    vec3 pi = vec3(intBitsToFloat(floatBitsToInt(p.x) + (p.x < 0.0 ? -ofi.x : ofi.x)),
+                   intBitsToFloat(floatBitsToInt(p.y) + (p.y < 0.0 ? -ofi.y : ofi.y)),
+                   intBitsToFloat(floatBitsToInt(p.z) + (p.z < 0.0 ? -ofi.z : ofi.z)));
+    return vec3(abs(p.x) < kOrigin ? p.x + kFloatScale * n.x : pi.x,
+                abs(p.y) < kOrigin ? p.y + kFloatScale * n.y : pi.y,
+                abs(p.z) < kOrigin ? p.z + kFloatScale * n.z : pi.z);
+}
+
+#endif

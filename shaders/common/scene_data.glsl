@@ -1,0 +1,147 @@
+// The scene buffers core/scene/SceneGpu uploads, by the fixed names SceneGpu::bind() looks for.
+// Every struct mirrors fovea::scene::layout (core/scene/SceneGpu.h), BvhNode (core/scene/Bvh.h)
+// and EmitterEntry (core/scene/LightTable.h); their sizes are static_asserted there. A vec3
+// followed by a 4-byte scalar shares one 16-byte slot in std430, exactly like glm::vec3 + float.
+//
+// Compile with SceneGpu::defines(): SCENE_HAS_TEXTURES / SCENE_HAS_EMISSIVE / SCENE_HAS_PUNCTUAL
+// = 0 drop the buffers and code paths a scene does not need. Without defines everything is on,
+// which is valid for any scene (empty buffers are still bound).
+#ifndef FOVEA_SCENE_DATA_GLSL
+#define FOVEA_SCENE_DATA_GLSL
+
+#ifndef SCENE_HAS_TEXTURES
+#define SCENE_HAS_TEXTURES 1
+#endif
+#ifndef SCENE_HAS_EMISSIVE
+#define SCENE_HAS_EMISSIVE 1
+#endif
+#ifndef SCENE_HAS_PUNCTUAL
+#define SCENE_HAS_PUNCTUAL 1
+#endif
+
+const uint kBvhInternalNode = 0xFFFFFFFFu;  // BvhNode.count of an internal node
+const uint kBvhMaxDepth = 48u;              // = Bvh::kMaxDepth; sizes the traversal stack
+const uint kEmitterPunctualBit = 0x80000000u;
+const uint kLightPoint = 0u;
+const uint kLightSpot = 1u;
+const uint kLightDirectional = 2u;
+
+struct SceneVertex {
+    vec4 positionU;  // xyz position, w = uv.x
+    vec4 normalV;    // xyz shading normal (may be zero), w = uv.y
+};
+
+struct SceneTriangle {
+    uvec3 indices;  // into scene_vertices
+    uint material;  // into scene_materials
+};
+
+// Depth-first: an internal node's left child is the next node, `index` is the right child.
+// A leaf (count != kBvhInternalNode) holds triangles [index, index + count).
+struct BvhNode {
+    vec3 boundsMin;
+    uint index;
+    vec3 boundsMax;
+    uint count;
+};
+
+struct SceneMaterial {
+    vec4 baseColor;  // linear RGBA factor
+    vec4 emissive;   // rgb linear factor; w = emitted power per unit area (light selection)
+    vec4 params;     // x metallic, y roughness, z doubleSided (0/1)
+    ivec4 textures;  // x baseColor (sRGB), y metallicRoughness (linear), z emissive (sRGB); -1 none
+};
+
+struct SceneTexture {
+    uint offset;  // first texel in scene_texels
+    uint width;   // 0 = no texels
+    uint height;
+    uint flags;
+};
+
+struct SceneLight {
+    vec3 position;
+    float range;  // 0 = infinite
+    vec3 direction;  // the way the light shines
+    uint type;       // kLightPoint / kLightSpot / kLightDirectional
+    vec3 intensity;  // color * intensity (candela; lux for directional)
+    float spotScale;
+    float spotOffset;
+    float pad0;
+    float pad1;
+    float pad2;
+};
+
+// One alias-table column over all lights (emissive triangles and punctual lights).
+struct SceneEmitter {
+    uint light;       // GPU triangle index, or kEmitterPunctualBit | scene_lights index
+    uint alias;       // column taken when the coin fails
+    float aliasProb;  // probability of keeping this column
+    float pdf;        // selection probability of this light (power / total power)
+};
+
+// Explicit bindings 16-25: the compiler's automatic numbering only numbers resources a shader
+// uses, and leaves unused ones (a pass that never samples textures still declares
+// scene_texels) at binding 0, where they would collide. glslang reserves explicit slots first, so
+// a pass's own auto-numbered resources flow around this range.
+layout(std140, binding = 16) uniform SceneInfo {
+    uint vertexCount;
+    uint triangleCount;
+    uint nodeCount;
+    uint materialCount;
+    uint textureCount;
+    uint texelCount;
+    uint lightCount;
+    uint emitterCount;
+    uint emissiveTriangleCount;
+    uint features;
+    uint invalidTriangles;
+    uint pad0;
+    float totalPower;
+    float emissivePower;
+    float punctualPower;
+    float radius;  // of the scene's bounding sphere
+    vec4 boundsMin;
+    vec4 boundsMax;
+} scene_info;
+
+layout(std430, binding = 17) readonly buffer SceneVertices {
+    SceneVertex vertices[];
+} scene_vertices;
+layout(std430, binding = 18) readonly buffer SceneTriangles {
+    SceneTriangle triangles[];
+} scene_triangles;
+layout(std430, binding = 19) readonly buffer SceneBvh {
+    BvhNode nodes[];
+} scene_bvh;
+// Per GPU triangle: v0, v1 - v0, v2 - v0 (3 vec4s): the leaf loop streams them contiguously.
+layout(std430, binding = 20) readonly buffer SceneBvhTriangles {
+    vec4 positions[];
+} scene_bvh_triangles;
+layout(std430, binding = 21) readonly buffer SceneMaterials {
+    SceneMaterial materials[];
+} scene_materials;
+
+#if SCENE_HAS_TEXTURES
+layout(std430, binding = 22) readonly buffer SceneTextures {
+    SceneTexture textures[];
+} scene_textures;
+// RGBA8 texels, R in the low byte (unpackUnorm4x8).
+layout(std430, binding = 23) readonly buffer SceneTexels {
+    uint texels[];
+} scene_texels;
+#endif
+
+#if SCENE_HAS_PUNCTUAL
+layout(std430, binding = 24) readonly buffer SceneLights {
+    SceneLight lights[];
+} scene_lights;
+#endif
+
+#if SCENE_HAS_EMISSIVE || SCENE_HAS_PUNCTUAL
+layout(std430, binding = 25) readonly buffer SceneEmitters {
+    SceneEmitter emitters[];
+} scene_emitters;
+#endif
+
+#endif

@@ -1,0 +1,255 @@
+// Shading-side scene queries: surface attributes at a hit, material lookup with manual texture
+// filtering (textures live in one texel buffer, see docs/scene-gpu.md), light sampling through
+// the alias table and punctual light evaluation.
+//
+// Light sampling contract: for a sample s from sceneSampleLight, the direct-light estimate at a
+// point with BSDF f and normal n is
+//     f * |dot(n, s.direction)| * s.radiance / s.pdf      (if the shadow ray is unoccluded)
+// s.pdf includes the light's selection probability; for area lights it is a solid-angle pdf
+// (MIS against BSDF sampling with sceneEmitterPdf), for punctual lights (s.isDelta) it is the
+// selection probability alone and s.radiance is the incident intensity / distance^2.
+#ifndef FOVEA_SCENE_SAMPLE_GLSL
+#define FOVEA_SCENE_SAMPLE_GLSL
+
+#include "scene_data.glsl"
+
+const float kSceneInfiniteDistance = 1e30;  // shadow-ray tMax of directional lights
+
+struct SceneSurface {
+    vec3 position;         // interpolated from the vertices (more precise than origin + t * dir)
+    vec3 geometricNormal;  // normalized; the front side of the CCW winding (glTF)
+    vec3 normal;           // interpolated shading normal, normalized (geometric where missing);
+                           // not flipped towards the ray: compare with geometricNormal
+    vec2 uv;
+    uint material;
+    float area;  // of the triangle
+};
+
+struct SceneMaterialSample {
+    vec3 baseColor;  // linear
+    float alpha;
+    vec3 emissive;  // linear radiance of the front face (sceneEmission handles back faces)
+    float metallic;
+    float roughness;
+    bool doubleSided;
+};
+
+struct SceneLightSample {
+    vec3 direction;  // unit vector from the shaded point to the light
+    float distance;  // to the light point: the shadow ray's tMax (shorten it by an epsilon)
+    vec3 radiance;   // area: emitted radiance towards the point; punctual: intensity / d^2
+    float pdf;       // see the contract above; > 0 whenever sceneSampleLight returns true
+    bool isDelta;    // punctual light: no MIS, BSDF rays never hit it
+    uint light;      // the SceneEmitter.light value that was picked
+};
+
+// Vertex 0 gets 1 - b.x - b.y.
+SceneSurface sceneSurface(uint triangle, vec2 barycentrics) {
+    SceneTriangle tri = scene_triangles.triangles[triangle];
+    SceneVertex a = scene_vertices.vertices[tri.indices.x];
+    SceneVertex b = scene_vertices.vertices[tri.indices.y];
+    SceneVertex c = scene_vertices.vertices[tri.indices.z];
+    vec3 w = vec3(1.0 - barycentrics.x - barycentrics.y, barycentrics.x, barycentrics.y);
+    SceneSurface s;
+    s.position = a.positionU.xyz * w.x + b.positionU.xyz * w.y + c.positionU.xyz * w.z;
+    vec3 cr = cross(b.positionU.xyz - a.positionU.xyz, c.positionU.xyz - a.positionU.xyz);
+    float len = length(cr);
+    // A hit triangle has nonzero area (the intersection rejects degenerate ones); the fallback
+    // only keeps callers with arbitrary ids NaN-free.
+    s.geometricNormal = len > 0.0 ? cr / len : vec3(0.0, 0.0, 1.0);
+    s.area = 0.5 * len;
+    vec3 n = a.normalV.xyz * w.x + b.normalV.xyz * w.y + c.normalV.xyz * w.z;
+    float nLen = length(n);
+    // Zero when the mesh has no normals, or opposite normals cancel: use the geometric one.
+    s.normal = nLen > 1e-20 ? n / nLen : s.geometricNormal;
+    s.uv = vec2(a.positionU.w, a.normalV.w) * w.x + vec2(b.positionU.w, b.normalV.w) * w.y +
+           vec2(c.positionU.w, c.normalV.w) * w.z;
+    s.material = tri.material;
+    return s;
+}
+
+// IEC 61966-2-1 decode; c is a unorm value in [0, 1], so pow's base is >= 0.055 / 1.055 > 0.
+vec3 sceneSrgbToLinear(vec3 c) {
+    return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), step(vec3(0.04045), c));
+}
+
+#if SCENE_HAS_TEXTURES
+vec4 sceneTexel(SceneTexture tex, uint x, uint y, bool srgb) {
+    vec4 t = unpackUnorm4x8(scene_texels.texels[tex.offset + y * tex.width + x]);
+    return srgb ? vec4(sceneSrgbToLinear(t.rgb), t.a) : t;
+}
+#endif
+
+// Bilinear sample with repeat wrap, texel centres at (i + 0.5) / size, top row = v 0 (glTF).
+// sRGB textures are decoded per texel before filtering, so filtering happens in linear space.
+// Returns vec4(1) for texture -1 or a texture without texels, so factors pass through.
+vec4 sceneSampleTexture(int texture, vec2 uv, bool srgb) {
+#if SCENE_HAS_TEXTURES
+    if (texture < 0 || uint(texture) >= scene_info.textureCount) return vec4(1.0);
+    SceneTexture tex = scene_textures.textures[texture];
+    if (tex.width == 0u || tex.height == 0u) return vec4(1.0);
+    vec2 st = fract(uv) * vec2(tex.width, tex.height) - 0.5;
+    vec2 cell = floor(st);
+    vec2 f = st - cell;
+    ivec2 i0 = ivec2(cell);  // in [-1, size - 1] for finite uv
+    ivec2 size = ivec2(tex.width, tex.height);
+    // Repeat: -1 wraps to the last texel and size to the first. The clamps keep NaN uvs
+    // (undefined int conversion) inside the texture.
+    ivec2 lo = clamp(mix(i0, size - 1, lessThan(i0, ivec2(0))), ivec2(0), size - 1);
+    ivec2 hi = clamp(mix(i0 + 1, ivec2(0), greaterThanEqual(i0 + 1, size)), ivec2(0), size - 1);
+    vec4 t00 = sceneTexel(tex, uint(lo.x), uint(lo.y), srgb);
+    vec4 t10 = sceneTexel(tex, uint(hi.x), uint(lo.y), srgb);
+    vec4 t01 = sceneTexel(tex, uint(lo.x), uint(hi.y), srgb);
+    vec4 t11 = sceneTexel(tex, uint(hi.x), uint(hi.y), srgb);
+    return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y);
+#else
+    return vec4(1.0);
+#endif
+}
+
+SceneMaterialSample sceneMaterial(uint material, vec2 uv) {
+    SceneMaterial m = scene_materials.materials[material];
+    SceneMaterialSample s;
+    vec4 base = m.baseColor * sceneSampleTexture(m.textures.x, uv, true);
+    s.baseColor = base.rgb;
+    s.alpha = base.a;
+    vec4 mr = sceneSampleTexture(m.textures.y, uv, false);  // glTF: G = roughness, B = metallic
+    s.metallic = m.params.x * mr.b;
+    s.roughness = m.params.y * mr.g;
+    s.doubleSided = m.params.z != 0.0;
+#if SCENE_HAS_EMISSIVE
+    s.emissive = m.emissive.rgb * sceneSampleTexture(m.textures.z, uv, true).rgb;
+#else
+    s.emissive = vec3(0.0);  // nothing in the scene emits
+#endif
+    return s;
+}
+
+// Radiance leaving a surface of this material; back faces emit only when double-sided.
+vec3 sceneEmission(uint material, vec2 uv, bool frontFacing) {
+#if SCENE_HAS_EMISSIVE
+    SceneMaterial m = scene_materials.materials[material];
+    if (m.emissive.w <= 0.0 || (!frontFacing && m.params.z == 0.0)) return vec3(0.0);
+    return m.emissive.rgb * sceneSampleTexture(m.textures.z, uv, true).rgb;
+#else
+    return vec3(0.0);
+#endif
+}
+
+// Solid-angle pdf with which sceneSampleLight produces the direction from `origin` to the
+// point `lightPosition` on emissive triangle `triangle` (for MIS after a BSDF ray hit it).
+// selection * d^2 / (area * |cos|) with selection = density * area / totalPower: area cancels.
+float sceneEmitterPdf(uint triangle, vec3 origin, vec3 lightPosition) {
+#if SCENE_HAS_EMISSIVE
+    SceneMaterial m = scene_materials.materials[scene_triangles.triangles[triangle].material];
+    if (m.emissive.w <= 0.0 || !(scene_info.totalPower > 0.0)) return 0.0;
+    uint base = 3u * triangle;
+    vec3 cr = cross(scene_bvh_triangles.positions[base + 1u].xyz,
+                    scene_bvh_triangles.positions[base + 2u].xyz);
+    vec3 toLight = lightPosition - origin;
+    float d2 = dot(toLight, toLight);
+    // |cos| * |cr| * d = |dot(cr, toLight)|; one product avoids two normalizations.
+    float cosTimes = abs(dot(cr, toLight));
+    if (!(cosTimes > 0.0)) return 0.0;  // grazing or degenerate: this direction is never sampled
+    // pdf = density * d2 / (totalPower * |cos|) with |cos| = cosTimes / (|cr| * d).
+    return m.emissive.w * d2 * length(cr) * sqrt(d2) / (scene_info.totalPower * cosTimes);
+#else
+    return 0.0;
+#endif
+}
+
+#if SCENE_HAS_PUNCTUAL
+// Incident intensity / d^2 (with range and cone falloff) from punctual light `index` at
+// `position`, and the unit direction and distance to it. Zero when the point is on the light.
+vec3 scenePunctualIncident(uint index, vec3 position, out vec3 direction, out float distance) {
+    SceneLight l = scene_lights.lights[index];
+    if (l.type == kLightDirectional) {
+        direction = -l.direction;  // normalized on upload
+        distance = kSceneInfiniteDistance;
+        return l.intensity;
+    }
+    vec3 toLight = l.position - position;
+    float d2 = dot(toLight, toLight);
+    if (!(d2 > 0.0)) {  // shading point exactly on the light: no defined direction
+        direction = vec3(0.0, 0.0, 1.0);
+        distance = 0.0;
+        return vec3(0.0);
+    }
+    distance = sqrt(d2);
+    direction = toLight / distance;  // distance > 0 here
+    float attenuation = 1.0 / d2;    // d2 > 0 here
+    if (l.range > 0.0) {
+        float r = distance / l.range;  // range > 0 here
+        attenuation *= clamp(1.0 - r * r * r * r, 0.0, 1.0);  // KHR_lights_punctual window
+    }
+    if (l.type == kLightSpot) {
+        float a = clamp(dot(l.direction, -direction) * l.spotScale + l.spotOffset, 0.0, 1.0);
+        attenuation *= a * a;
+    }
+    return l.intensity * attenuation;
+}
+#endif
+
+// Picks a light (alias table: u.x column, u.y coin) and, for a triangle, a uniform point on it
+// (u.zw). Returns false when the scene has no lights or the sample carries nothing (back face of
+// a one-sided emitter, the point on the light itself, grazing angle).
+bool sceneSampleLight(vec3 position, vec4 u, out SceneLightSample s) {
+    s.direction = vec3(0.0, 0.0, 1.0);
+    s.distance = 0.0;
+    s.radiance = vec3(0.0);
+    s.pdf = 0.0;
+    s.isDelta = false;
+    s.light = 0u;
+#if SCENE_HAS_EMISSIVE || SCENE_HAS_PUNCTUAL
+    uint n = scene_info.emitterCount;
+    if (n == 0u) return false;
+    uint column = min(uint(u.x * float(n)), n - 1u);
+    SceneEmitter e = scene_emitters.emitters[column];
+    if (!(u.y < e.aliasProb)) e = scene_emitters.emitters[e.alias];
+    s.light = e.light;
+    if ((e.light & kEmitterPunctualBit) != 0u) {
+#if SCENE_HAS_PUNCTUAL
+        s.isDelta = true;
+        s.radiance = scenePunctualIncident(e.light & ~kEmitterPunctualBit, position, s.direction,
+                                           s.distance);
+        s.pdf = e.pdf;
+        return e.pdf > 0.0 && s.distance > 0.0;
+#else
+        return false;
+#endif
+    }
+#if SCENE_HAS_EMISSIVE
+    uint base = 3u * e.light;
+    vec3 v0 = scene_bvh_triangles.positions[base].xyz;
+    vec3 e1 = scene_bvh_triangles.positions[base + 1u].xyz;
+    vec3 e2 = scene_bvh_triangles.positions[base + 2u].xyz;
+    // Uniform on the triangle: b1 = sqrt(u.z) (1 - u.w), b2 = sqrt(u.z) u.w.
+    float su = sqrt(u.z);  // u.z >= 0
+    vec2 bary = vec2(su * (1.0 - u.w), su * u.w);
+    vec3 lightPos = v0 + e1 * bary.x + e2 * bary.y;
+    vec3 cr = cross(e1, e2);
+    float crLen = length(cr);
+    vec3 toLight = lightPos - position;
+    float d2 = dot(toLight, toLight);
+    // Zero-area triangles are not in the table; d2 = 0 means the point is on the light.
+    if (!(crLen > 0.0) || !(d2 > 0.0)) return false;
+    float d = sqrt(d2);
+    s.direction = toLight / d;  // d > 0
+    s.distance = d;
+    float cosLight = dot(cr / crLen, -s.direction);  // crLen > 0
+    SceneSurface surf = sceneSurface(e.light, bary);
+    s.radiance = sceneEmission(surf.material, surf.uv, cosLight > 0.0);
+    float area = 0.5 * crLen;
+    // Area -> solid angle: d^2 / (area |cos|); a grazing sample has no finite pdf.
+    if (!(abs(cosLight) > 0.0) || all(equal(s.radiance, vec3(0.0)))) return false;
+    s.pdf = e.pdf * d2 / (area * abs(cosLight));
+    return s.pdf > 0.0;
+#else
+    return false;
+#endif
+#else
+    return false;
+#endif
+}
+
+#endif
