@@ -1,6 +1,7 @@
 #include "core/graph/GraphContexts.h"
 
 #include "core/graph/RenderGraph.h"
+#include "core/scene/SceneGpu.h"
 #include "core/util/DidYouMean.h"
 #include "core/util/Error.h"
 #include "core/vk/ComputePipeline.h"
@@ -39,6 +40,7 @@ std::unique_ptr<gpu::ComputePipeline> GraphCompileContext::createPipeline(
         if (std::find(names.begin(), names.end(), b.name) != names.end()) continue;
         // scene_* resources are bound by SceneGpu::bind (docs/scene-gpu.md).
         if (mGraph.scene() && b.name.rfind("scene_", 0) == 0) continue;
+        if (b.name == "camera_info") continue;  // bound by bindFields from the graph's camera
         std::string fields;
         for (const auto& f : node.reflection.fields()) fields += (fields.empty() ? "" : ", ") + f.name;
         throw RuntimeError("pass '" + node.name + "' (" + node.type + "): shader '" + shaderPath +
@@ -72,6 +74,8 @@ bool GraphExecuteContext::historyValid(const std::string& input) const {
 
 void GraphExecuteContext::bindFields(gpu::ComputePipeline& pipeline) {
     const PassNode& node = mPlan.nodes[mNode];
+    if (pipeline.hasBinding("camera_info")) pipeline.bind("camera_info", mGraph.cameraBuffer());
+    if (mGraph.scene()) mGraph.scene()->bind(pipeline);
     for (const auto& b : pipeline.interface().bindings) {
         const FieldDesc* f = node.reflection.find(b.name);
         if (!f) continue;  // bound by the pass itself (checked at compile)

@@ -89,7 +89,8 @@ public:
     // False for a delayed input whose history does not exist yet (first frames, reset, resize,
     // camera cut); true for any other connected input.
     virtual bool historyValid(const std::string& input) const = 0;
-    // Binds every shader resource whose name is a connected field of this pass.
+    // Binds every shader resource whose name is a connected field of this pass, plus the scene
+    // buffers (scene_*) and the frame camera (camera_info) when the shader declares them.
     virtual void bindFields(gpu::ComputePipeline& pipeline) = 0;
     // The scene (null without one) and this frame's camera (a default one without a scene).
     virtual const scene::SceneGpu* scene() const = 0;

@@ -5,6 +5,7 @@
 
 #include "core/graph/GraphContexts.h"
 #include "core/scene/Camera.h"
+#include "core/scene/CameraGpu.h"
 #include "core/util/Error.h"
 #include "core/vk/Context.h"
 #include "core/vk/Formats.h"
@@ -43,6 +44,9 @@ const char* passStatusName(PassStatus s) {
 RenderGraph::RenderGraph(gpu::Context& gpu, const PassRegistry& registry)
     : mGpu(gpu), mRegistry(registry), mCamera(std::make_unique<scene::FrameCamera>()) {
     const auto& device = mGpu.device();
+    mCameraBuffer = std::make_unique<gpu::Buffer>(
+        mGpu, sizeof(scene::layout::CameraInfo), vk::BufferUsageFlagBits::eUniformBuffer, true,
+        "camera_info");
     mCommandPool = std::make_unique<vk::raii::CommandPool>(
         device, vk::CommandPoolCreateInfo{
                     .flags = vk::CommandPoolCreateFlagBits::eResetCommandBuffer,

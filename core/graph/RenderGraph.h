@@ -62,6 +62,8 @@ public:
     void setCamera(const scene::FrameCamera& camera);
     const scene::SceneGpu* scene() const { return mScene; }
     const scene::FrameCamera& camera() const { return *mCamera; }
+    // The `camera_info` uniform buffer (shaders/common/camera.glsl), refreshed before each frame.
+    const gpu::Buffer& cameraBuffer() const { return *mCameraBuffer; }
 
     FrameTiming runFrame();
 
@@ -111,6 +113,7 @@ private:
     FrameInfo mFrame;
     const scene::SceneGpu* mScene = nullptr;
     std::unique_ptr<scene::FrameCamera> mCamera;
+    std::unique_ptr<gpu::Buffer> mCameraBuffer;  // host-visible; frames run one at a time
     uint64_t mAllocatedTransient = 0, mAllocatedPersistent = 0;
 };
 

@@ -1,9 +1,11 @@
 // Frame execution of a RenderGraph: barriers, bypass, caching, timestamps.
 #include <chrono>
+#include <cstring>
 
 #include "core/graph/GraphContexts.h"
 #include "core/graph/RenderGraph.h"
 #include "core/graph/RuntimeResource.h"
+#include "core/scene/CameraGpu.h"
 #include "core/util/Error.h"
 #include "core/vk/Context.h"
 #include "core/vk/Resources.h"
@@ -63,6 +65,13 @@ uint64_t RenderGraph::cacheKey(size_t node) const {
     uint64_t h = 1469598103934665603ull;
     for (char c : saveParams(*n.pass, false).dump()) h = mix(h, uint8_t(c));
     h = mix(h, mFrame.seed);  // passes see it (ImageSource noise); size changes reset anyway
+    if (n.pass->sceneNeeds() != 0) {
+        // A pass that reads the scene sees the camera too: a moved camera is a changed input.
+        const auto info = scene::layout::packCamera(*mCamera, 0, 0);
+        const auto* bytes = reinterpret_cast<const uint8_t*>(&info);
+        for (size_t i = 0; i < sizeof(info); ++i) h = mix(h, bytes[i]);
+        h = mix(h, reinterpret_cast<uintptr_t>(mScene));
+    }
     for (const auto& [key, src] : mPlan.inputs) {
         if (key.first != node) continue;
         h = mix(h, mResources[src.resource]->version);
@@ -156,6 +165,11 @@ FrameTiming RenderGraph::runFrame() {
     FrameTiming timing;
     const auto& cmd = *mCommandBuffer;
     auto t0 = Clock::now();
+    // The previous frame finished (runFrame waits on its fence), so the mapped camera buffer is
+    // free to overwrite.
+    const auto cameraInfo =
+        scene::layout::packCamera(*mCamera, mFrame.index, mFrame.framesSinceReset);
+    std::memcpy(mCameraBuffer->mapped(), &cameraInfo, sizeof(cameraInfo));
     cmd.reset();
     cmd.begin(vk::CommandBufferBeginInfo{
         .flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
