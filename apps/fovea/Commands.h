@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/fovea/SceneSetup.h"
 #include "core/graph/GraphDesc.h"
 
 namespace fovea::app {
@@ -23,7 +24,7 @@ struct GraphOptions {
 
 struct RunOptions {
     GraphOptions graph;
-    std::string scene = "none";
+    SceneOptions scene;
     int frames = 0;  // 0 = graph default (or 1)
     int64_t seed = -1;  // -1 = graph default (or 0)
     std::string out;
@@ -32,13 +33,24 @@ struct RunOptions {
     bool validation = false;
     bool overwrite = false;
     bool quiet = false;
+    // `fovea reference`: a progress bar with an ETA counting samples per pixel instead of frames.
+    uint32_t samplesPerFrame = 0;  // 0 = plain frame counter
 };
 
 void addRunCommand(CLI::App& app, RunOptions& options);
 int runCommand(const RunOptions& options);
 
+// `fovea reference`: a converged image of a scene (graphs/reference.json by default).
+struct ReferenceOptions {
+    RunOptions run;
+    int spp = 1024;
+};
+void addReferenceCommand(CLI::App& app, ReferenceOptions& options);
+int referenceCommand(ReferenceOptions options);
+
 struct ValidateOptions {
     GraphOptions graph;
+    SceneOptions scene;
     bool dump = false;
     bool json = false;
 };

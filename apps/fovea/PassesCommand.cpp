@@ -26,15 +26,16 @@ nlohmann::json describePass(const graph::PassTypeInfo& info) {
     pass->reflect(r);
     nlohmann::json fields = nlohmann::json::array();
     for (const auto& f : r.fields()) {
-        nlohmann::json jf = {{"name", f.name},
-                             {"kind", graph::fieldKindName(f.kind)},
-                             {"format", f.format == vk::Format::eUndefined
-                                            ? "any"
-                                            : gpu::formatName(f.format)},
-                             {"size", graph::sizeRuleName(f.size)},
-                             {"optional", f.optional},
-                             {"persistent", f.persistent},
-                             {"doc", f.doc}};
+        nlohmann::json jf = {
+            {"name", f.name},
+            {"kind", graph::fieldKindName(f.kind)},
+            {"format", f.format != vk::Format::eUndefined ? gpu::formatName(f.format)
+                       : f.floatOnly                      ? "any float"
+                                                          : "any"},
+            {"size", graph::sizeRuleName(f.size)},
+            {"optional", f.optional},
+            {"persistent", f.persistent},
+            {"doc", f.doc}};
         if (f.size == graph::SizeRule::SameAsInput) jf["same_as"] = f.sameAs;
         if (f.size == graph::SizeRule::Scaled) jf["scale"] = f.scale;
         fields.push_back(jf);

@@ -15,7 +15,8 @@ Stats computeStats(std::vector<double> values);
 nlohmann::json statsJson(const Stats& s);
 
 struct ReportInputs {
-    std::string graphFile, scene, deviceName, driver;
+    std::string graphFile, deviceName, driver;
+    nlohmann::json scene = "none";  // "none" or RunScene::json()
     uint32_t width = 0, height = 0, frames = 0;
     uint64_t seed = 0;
     std::vector<double> frameGpuMs, frameCpuMs, overheadCpuMs;

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "apps/fovea/Commands.h"
+#include "apps/fovea/Progress.h"
 #include "apps/fovea/Report.h"
 #include "core/graph/PassRegistry.h"
 #include "core/graph/RenderGraph.h"
@@ -22,7 +23,6 @@ namespace fs = std::filesystem;
 void addRunCommand(CLI::App& app, RunOptions& o) {
     auto* cmd = app.add_subcommand("run", "run a graph headless and write its outputs + report");
     cmd->add_option("graph", o.graph.graph, "graph file (JSON)")->required();
-    cmd->add_option("--scene", o.scene, "scene to render ('none' until scenes land)");
     cmd->add_option("--frames", o.frames, "number of frames (default: graph default or 1)")
         ->check(CLI::Range(1, std::numeric_limits<int>::max()));  // 0 is the "default" marker
     cmd->add_option("--size", o.graph.size, "render size WIDTHxHEIGHT (default: graph or 256x256)");
@@ -37,6 +37,7 @@ void addRunCommand(CLI::App& app, RunOptions& o) {
     cmd->add_flag("--no-aliasing", o.graph.noAliasing, "give every transient image its own memory");
     cmd->add_flag("--overwrite", o.overwrite, "allow writing into a non-empty output directory");
     cmd->add_flag("--quiet", o.quiet, "no progress on stderr");
+    addSceneOptions(*cmd, o.scene);
 }
 
 namespace {
@@ -52,6 +53,8 @@ std::set<uint32_t> parseSaveFrames(const std::string& text, uint32_t frames) {
         for (uint32_t f = 0; f < frames; ++f) out.insert(f);
         return out;
     }
+    if (text.back() == ',')
+        throw InputError("--save-frames", "", "trailing comma in '" + text + "'");
     std::stringstream s(text);
     std::string item;
     while (std::getline(s, item, ',')) {
@@ -80,10 +83,7 @@ int runCommand(const RunOptions& o) {
     if (o.frames < 0) throw InputError("--frames", "", "must be at least 1");
     uint32_t frames = o.frames > 0 ? uint32_t(o.frames) : desc.defaults.frames.value_or(1);
     uint64_t seed = o.seed >= 0 ? uint64_t(o.seed) : desc.defaults.seed.value_or(0);
-    std::string scene = o.scene;
-    if (scene != "none")
-        throw InputError("--scene", "", "unknown scene '" + scene +
-                                            "' (available: none; scenes arrive with issue #3)");
+    RunScene scene(o.scene, desc);
     std::set<uint32_t> save = parseSaveFrames(o.saveFrames, frames);
     fs::path outDir = o.out.empty() ? fs::path("out") / (desc.name.empty() ? "run" : desc.name)
                                     : fs::path(o.out);
@@ -101,26 +101,34 @@ int runCommand(const RunOptions& o) {
         std::cerr << "fovea: device " << ctx.deviceName() << " (" << ctx.driverName() << " "
                   << ctx.driverInfo() << ")\n";
 
+    for (const auto& w : scene.hasScene() ? scene.json()["warnings"] : nlohmann::json::array())
+        if (!o.quiet) std::cerr << "fovea: warning: " << w.get<std::string>() << "\n";
+    scene.upload(ctx);
+
     graph::CompileOptions options;
     options.width = width;
     options.height = height;
     options.aliasing = !o.graph.noAliasing;
+    options.sceneFeatures = scene.features();
     graph::RenderGraph graph(ctx, graph::passRegistry());
+    graph.setScene(scene.gpu());
+    graph.setCamera(scene.frameCamera(0, width, height));
     graph.build(desc, options);
     graph.setSeed(seed);
     fs::create_directories(outDir);
 
     ReportInputs report;
     report.graphFile = o.graph.graph;
-    report.scene = scene;
+    report.scene = scene.json();
     report.deviceName = ctx.deviceName();
     report.driver = ctx.driverName() + " " + ctx.driverInfo();
     report.width = width;
     report.height = height;
     report.frames = frames;
     report.seed = seed;
-    auto start = std::chrono::steady_clock::now();
+    Progress progress(frames, o.samplesPerFrame, o.quiet);
     for (uint32_t f = 0; f < frames; ++f) {
+        if (f > 0) graph.setCamera(scene.frameCamera(f, width, height));
         graph::FrameTiming t = graph.runFrame();
         report.frameGpuMs.push_back(t.gpuMs);
         report.frameCpuMs.push_back(t.recordCpuMs);
@@ -142,11 +150,9 @@ int runCommand(const RunOptions& o) {
                 report.outputs.push_back(base + ".png");
             }
         }
-        double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        if (!o.quiet && frames > 1 && (elapsed > 1.0 || f + 1 == frames))
-            std::cerr << "\rfovea: frame " << (f + 1) << "/" << frames << std::flush;
+        progress.update(f + 1);
     }
-    if (!o.quiet && frames > 1) std::cerr << "\n";
+    progress.finish();
     if (ctx.validationMessageCount() > 0)
         throw RuntimeError(std::to_string(ctx.validationMessageCount()) +
                            " Vulkan validation message(s) during the run (see above)");

@@ -15,6 +15,7 @@ void addValidateCommand(CLI::App& app, ValidateOptions& o) {
     cmd->add_flag("--dump", o.dump, "print the compiled graph (order, culling, resources, "
                                      "aliasing, barriers, memory)");
     cmd->add_flag("--json", o.json, "with --dump: print it as JSON");
+    addSceneOptions(*cmd, o.scene);
 }
 
 int validateCommand(const ValidateOptions& o) {
@@ -24,6 +25,9 @@ int validateCommand(const ValidateOptions& o) {
     options.width = width;
     options.height = height;
     options.aliasing = !o.graph.noAliasing;
+    // The scene is loaded on the CPU only: its features decide which passes are culled.
+    RunScene scene(o.scene, desc);
+    options.sceneFeatures = scene.features();
     graph::CompiledPlan plan = graph::compileGraphPlan(desc, graph::passRegistry(), options);
     if (o.dump && o.json)
         std::cout << graph::dumpPlanJson(plan).dump(2) << "\n";

@@ -1,0 +1,63 @@
+// `fovea reference`: a converged image of a scene, the ground truth every error figure is
+// measured against. It is `fovea run` on graphs/reference.json (PathTrace + Accumulate) with the
+// frame count derived from the requested samples per pixel, a progress bar and an ETA.
+#include <cmath>
+#include <filesystem>
+
+#include "apps/fovea/Commands.h"
+#include "core/util/Error.h"
+
+namespace fovea::app {
+
+namespace fs = std::filesystem;
+
+void addReferenceCommand(CLI::App& app, ReferenceOptions& o) {
+    auto* cmd = app.add_subcommand(
+        "reference", "render a converged reference image (PathTrace + Accumulate) of a scene");
+    o.run.graph.graph = (fs::path(FOVEA_SOURCE_DIR) / "graphs" / "reference.json").string();
+    cmd->add_option("--graph", o.run.graph.graph,
+                    "reference graph (default: graphs/reference.json of this source tree)");
+    cmd->add_option("--spp", o.spp, "samples per pixel in total (default 1024)")
+        ->check(CLI::Range(1, 1 << 24));
+    cmd->add_option("--size", o.run.graph.size, "render size WIDTHxHEIGHT (default: the graph's)");
+    cmd->add_option("--out", o.run.out, "output directory (default: out/reference/<scene>)");
+    cmd->add_option("--set", o.run.graph.sets, "override a parameter: pass.param=value");
+    cmd->add_option("--seed", o.run.seed, "random seed (default 0)")
+        ->check(CLI::Range(int64_t(0), std::numeric_limits<int64_t>::max()));
+    cmd->add_option("--device", o.run.device, "GPU index or name substring");
+    cmd->add_flag("--validation", o.run.validation, "enable the Vulkan validation layer");
+    cmd->add_flag("--overwrite", o.run.overwrite, "allow writing into a non-empty directory");
+    cmd->add_flag("--quiet", o.run.quiet, "no progress bar");
+    addSceneOptions(*cmd, o.run.scene);
+}
+
+int referenceCommand(ReferenceOptions o) {
+    // Samples per frame = the `spp` of the graph's PathTrace pass(es) after --set overrides.
+    graph::GraphDesc desc = loadGraph(o.run.graph);
+    uint32_t perFrame = 0;
+    for (const auto& p : desc.passes) {
+        if (p.type != "PathTrace") continue;
+        uint32_t spp = 1;
+        if (auto it = p.params.find("spp"); it != p.params.end() && it->is_number_unsigned())
+            spp = it->get<uint32_t>();
+        if (perFrame != 0 && spp != perFrame)
+            throw InputError(o.run.graph.graph, "/passes",
+                             "reference graphs need one samples-per-frame count; PathTrace passes "
+                             "disagree");
+        perFrame = spp;
+    }
+    if (perFrame == 0)
+        throw InputError(o.run.graph.graph, "/passes", "a reference graph needs a PathTrace pass");
+    const uint32_t frames = uint32_t((uint64_t(o.spp) + perFrame - 1) / perFrame);  // >= 1
+    o.run.frames = int(frames);
+    o.run.saveFrames = "last";
+    o.run.samplesPerFrame = perFrame;
+    if (o.run.out.empty()) {
+        std::string name = o.run.scene.scene.empty() ? std::string("default") : o.run.scene.scene;
+        if (name.rfind("builtin:", 0) == 0) name = name.substr(8);
+        o.run.out = (fs::path("out") / "reference" / fs::path(name).stem()).string();
+    }
+    return runCommand(o.run);
+}
+
+}  // namespace fovea::app

@@ -1,0 +1,172 @@
+#include "apps/fovea/SceneSetup.h"
+
+#include <chrono>
+#include <filesystem>
+#include <sstream>
+
+#include "core/graph/Pass.h"
+#include "core/scene/SceneGpu.h"
+#include "core/scene/SceneLoader.h"
+#include "core/util/Error.h"
+
+namespace fovea::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// A path from the graph's defaults is relative to the graph file; one from the command line is
+// relative to the working directory.
+std::string relativeToGraph(const std::string& path, const graph::GraphDesc& desc) {
+    if (path.rfind("builtin:", 0) == 0 || fs::path(path).is_absolute() || desc.file.empty())
+        return path;
+    return (fs::path(desc.file).parent_path() / path).lexically_normal().string();
+}
+
+scene::CameraDesc gltfCamera(const scene::Scene& s, const std::string& which) {
+    if (s.cameras.empty())
+        throw InputError("--camera", "", "'gltf:" + which + "': the scene has no cameras");
+    char* end = nullptr;
+    unsigned long index = std::strtoul(which.c_str(), &end, 10);
+    if (!which.empty() && *end == '\0') {
+        if (index >= s.cameras.size())
+            throw InputError("--camera", "", "'gltf:" + which + "': the scene has " +
+                                                 std::to_string(s.cameras.size()) + " camera(s)");
+        return s.cameras[index];
+    }
+    std::string names;
+    for (const auto& c : s.cameras) {
+        if (c.name == which) return c;
+        names += (names.empty() ? "'" : ", '") + c.name + "'";
+    }
+    throw InputError("--camera", "", "'gltf:" + which + "': no camera of that name (cameras: " +
+                                         names + ")");
+}
+
+}  // namespace
+
+void addSceneOptions(CLI::App& cmd, SceneOptions& o) {
+    cmd.add_option("--scene", o.scene,
+                   "scene: builtin:<name> or a .gltf/.glb file; 'none' for none (default: the "
+                   "graph's defaults.scene)");
+    cmd.add_option("--camera", o.camera,
+                   "camera path JSON (docs/camera-path.md) or gltf:<index|name> (default: the "
+                   "graph's defaults.camera, else the scene's first camera, else a camera framing "
+                   "the scene)");
+    cmd.add_flag("--stereo", o.stereo, "side-by-side stereo rig (seed 000 §3.1)");
+    cmd.add_flag("--mono", o.mono, "one eye, even if the graph defaults to stereo");
+    cmd.add_option("--ipd", o.ipd, "interpupillary distance in scene units (default 0.064)")
+        ->check(CLI::Range(0.0f, 10.0f));
+    cmd.add_option("--gaze", o.gaze,
+                   "gaze point in [0,1]^2 of each eye's image: x,y or xl,yl,xr,yr (default: the "
+                   "centre; a camera path may override it per key)");
+    cmd.add_flag("--jitter", o.jitter, "Halton (2,3) sub-pixel jitter per frame (for TAA)");
+}
+
+std::array<glm::vec2, scene::kMaxEyes> parseGaze(const std::string& text) {
+    std::vector<float> v;
+    std::stringstream s(text);
+    std::string item;
+    while (std::getline(s, item, ',')) {
+        char* end = nullptr;
+        float f = std::strtof(item.c_str(), &end);
+        if (item.empty() || *end != '\0' || !(f >= 0.0f && f <= 1.0f))
+            throw InputError("--gaze", "", "expected numbers in [0,1] as x,y or xl,yl,xr,yr, got '" +
+                                               text + "'");
+        v.push_back(f);
+    }
+    if (!text.empty() && text.back() == ',') v.clear();  // a trailing comma is a typo, not a list
+    if (v.size() == 2) return {glm::vec2(v[0], v[1]), glm::vec2(v[0], v[1])};
+    if (v.size() == 4) return {glm::vec2(v[0], v[1]), glm::vec2(v[2], v[3])};
+    throw InputError("--gaze", "", "expected x,y or xl,yl,xr,yr in [0,1], got '" + text + "'");
+}
+
+RunScene::RunScene(const SceneOptions& o, const graph::GraphDesc& desc) {
+    if (o.stereo && o.mono) throw InputError("--stereo", "", "--stereo and --mono exclude each other");
+    std::string spec = !o.scene.empty() ? o.scene
+                                        : relativeToGraph(desc.defaults.scene.value_or("none"), desc);
+    mRig.stereo = o.stereo || (!o.mono && desc.defaults.stereo.value_or(false));
+    mRig.ipd = o.ipd;
+    mRig.jitter = o.jitter;
+    if (!o.gaze.empty()) mGaze = parseGaze(o.gaze);
+    std::string camera = !o.camera.empty() ? o.camera
+                         : desc.defaults.camera ? relativeToGraph(*desc.defaults.camera, desc)
+                                                : std::string();
+    if (spec == "none") {
+        if (!o.camera.empty())
+            throw InputError("--camera", "", "a camera needs a scene (--scene)");
+        return;
+    }
+    auto t0 = std::chrono::steady_clock::now();
+    mScene = std::make_unique<scene::Scene>(scene::loadScene(spec));
+    mLoadMs = msSince(t0);
+    mSpec = spec;
+    if (camera.rfind("gltf:", 0) == 0) {
+        mPath = scene::CameraPath::still(gltfCamera(*mScene, camera.substr(5)));
+        mCameraSource = camera;
+    } else if (!camera.empty()) {
+        mPath = scene::CameraPath::load(camera);
+        mCameraSource = "path:" + camera;
+    } else if (!mScene->cameras.empty()) {
+        mPath = scene::CameraPath::still(mScene->cameras.front());
+        mCameraSource = "gltf:0";
+    } else {
+        mPath = scene::CameraPath::still(mScene->defaultCamera());
+        mCameraSource = "default";
+    }
+}
+
+RunScene::~RunScene() = default;
+
+uint32_t RunScene::features() const {
+    if (!mScene) return 0;
+    return mScene->features() | (mRig.stereo ? graph::kSceneStereo : 0u);
+}
+
+void RunScene::upload(gpu::Context& context) {
+    if (!mScene) return;
+    auto t0 = std::chrono::steady_clock::now();
+    mGpu = std::make_unique<scene::SceneGpu>(context, *mScene);
+    mUploadMs = msSince(t0);
+}
+
+scene::FrameCamera RunScene::frameCamera(uint64_t frame, uint32_t width, uint32_t height) {
+    scene::CameraSample sample =
+        mPath ? mPath->at(frame) : scene::CameraSample{scene::CameraDesc{}, std::nullopt, false};
+    std::array<glm::vec2, scene::kMaxEyes> gaze = sample.gaze.value_or(mGaze);
+    const scene::FrameCamera* previous = mPrevious && !sample.cut ? &*mPrevious : nullptr;
+    scene::FrameCamera camera =
+        scene::makeFrameCamera(sample.camera, width, height, mRig, frame, previous, gaze.data());
+    camera.cut = sample.cut && frame > 0;
+    mPrevious = camera;
+    return camera;
+}
+
+nlohmann::json RunScene::json() const {
+    if (!mScene) return "none";
+    nlohmann::json j = {{"spec", mSpec},
+                        {"triangles", mScene->mesh.triangles.size()},
+                        {"materials", mScene->materials.size()},
+                        {"lights", mScene->lights.size()},
+                        {"features", graph::sceneFeatureNames(features())},
+                        {"camera", mCameraSource},
+                        {"stereo", mRig.stereo},
+                        {"load_ms", mLoadMs},
+                        {"warnings", mScene->warnings}};
+    if (mGpu) {
+        const auto& bvh = mGpu->bvhStats();
+        j["upload_ms"] = mUploadMs;  // BVH build + light table + upload
+        j["gpu_bytes"] = mGpu->totalBytes();
+        j["bvh"] = {{"nodes", bvh.nodeCount},       {"leaves", bvh.leafCount},
+                    {"max_depth", bvh.maxDepth},     {"sah_cost", bvh.sahCost},
+                    {"build_ms", bvh.buildMs},       {"invalid_triangles", bvh.invalidTriangles},
+                    {"emissive_triangles", mGpu->info().emissiveTriangleCount}};
+    }
+    return j;
+}
+
+}  // namespace fovea::app

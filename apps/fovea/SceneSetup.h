@@ -1,0 +1,75 @@
+// What `run`, `reference` and `bench` share about scenes: the --scene/--camera/--stereo/--ipd/
+// --gaze/--jitter options, loading the scene onto the GPU, and the camera of every frame (a path,
+// a glTF camera or the default framing camera) handed to the graph before each frame.
+#pragma once
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "core/graph/GraphDesc.h"
+#include "core/scene/Camera.h"
+#include "core/scene/CameraPath.h"
+#include "core/scene/Scene.h"
+
+namespace fovea::gpu {
+class Context;
+}
+namespace fovea::scene {
+class SceneGpu;
+}
+
+namespace fovea::app {
+
+struct SceneOptions {
+    std::string scene;   // empty: the graph's defaults.scene, else none; "none" = no scene
+    std::string camera;  // camera path JSON, or "gltf:<index|name>"; empty: graph default
+    bool stereo = false, mono = false;  // --stereo / --mono override defaults.stereo
+    float ipd = 0.064f;
+    std::string gaze;  // "x,y" (both eyes) or "xl,yl,xr,yr"; empty = each eye's centre
+    bool jitter = false;
+};
+
+// Adds the options above to a subcommand.
+void addSceneOptions(CLI::App& cmd, SceneOptions& o);
+
+// Parses "x,y" or "xl,yl,xr,yr" in [0,1]; errors name --gaze.
+std::array<glm::vec2, scene::kMaxEyes> parseGaze(const std::string& text);
+
+class RunScene {
+public:
+    // Resolves the scene and camera specs against the graph (its defaults; relative paths are
+    // relative to the graph file) and loads the scene on the CPU. Throws InputError naming the
+    // option or file.
+    RunScene(const SceneOptions& options, const graph::GraphDesc& desc);
+    ~RunScene();
+
+    bool hasScene() const { return mScene != nullptr; }
+    const std::string& spec() const { return mSpec; }  // "none" without a scene
+    uint32_t features() const;                          // graph::SceneFeature bits (CPU side)
+    // Uploads geometry, BVH and lights (timed; see json()).
+    void upload(gpu::Context& context);
+    const scene::SceneGpu* gpu() const { return mGpu.get(); }
+
+    // The camera of frame `frame` for an image of width x height (the whole side-by-side image
+    // when stereo); remembers it as the "previous" camera of the next call.
+    scene::FrameCamera frameCamera(uint64_t frame, uint32_t width, uint32_t height);
+    bool stereo() const { return mRig.stereo; }
+
+    // The scene's entry in report.json.
+    nlohmann::json json() const;
+
+private:
+    std::string mSpec = "none";
+    std::string mCameraSource;  // "path:<file>", "gltf:<n>", "default"
+    std::unique_ptr<scene::Scene> mScene;
+    std::unique_ptr<scene::SceneGpu> mGpu;
+    std::optional<scene::CameraPath> mPath;
+    scene::CameraRigOptions mRig;
+    std::array<glm::vec2, scene::kMaxEyes> mGaze{glm::vec2(0.5f), glm::vec2(0.5f)};
+    std::optional<scene::FrameCamera> mPrevious;
+    double mLoadMs = 0.0, mUploadMs = 0.0;
+};
+
+}  // namespace fovea::app
