@@ -3,7 +3,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo
 
-.PHONY: deps configure build demo test sanitize format clean
+.PHONY: deps configure build demo test sanitize sanitize-ci format clean
 
 deps:
 	bash scripts/install-deps.sh
@@ -32,3 +32,12 @@ format:
 
 clean:
 	rm -rf $(BUILD) build-asan out
+
+# The CI's sanitizer step: ASan + UBSan over the tests that parse and check user input (graph
+# JSON, parameters, glTF incl. the malformed-file suite, camera paths, CLI arguments) and build
+# CPU data structures. GPU-heavy tests stay in `make test` (lavapipe under ASan is slow).
+SANITIZE_TESTS ?= SceneLoad|SceneGltfSynthetic|SceneBuiltin|GraphDesc|Param|Compiler|BadGraph|JsonUtil|Camera|BvhBuild|LightTable|CliInput|CliValidate
+sanitize-ci: deps
+	cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DFOVEA_SANITIZE=ON
+	cmake --build build-asan -j $(JOBS) --target fovea_tests
+	cd build-asan && ctest -R '$(SANITIZE_TESTS)' --output-on-failure -j $(JOBS) --timeout 900

@@ -45,6 +45,7 @@ nlohmann::json buildReport(const graph::RenderGraph& graph, const ReportInputs& 
             {"size", {in.width, in.height}},
             {"frames", in.frames},
             {"seed", in.seed},
+            {"build_ms", in.buildMs},
             {"passes", passes},
             {"memory",
              {{"transient_bytes", plan.transientBytes()},

@@ -19,6 +19,7 @@ struct ReportInputs {
     nlohmann::json scene = "none";  // "none" or RunScene::json()
     uint32_t width = 0, height = 0, frames = 0;
     uint64_t seed = 0;
+    double buildMs = 0;  // RenderGraph::build: plan compile, allocation, pass compile (shaders)
     std::vector<double> frameGpuMs, frameCpuMs, overheadCpuMs;
     std::vector<std::string> outputs;  // written files, relative to the out dir
 };

@@ -113,13 +113,18 @@ int runCommand(const RunOptions& o) {
     graph::RenderGraph graph(ctx, graph::passRegistry());
     graph.setScene(scene.gpu());
     graph.setCamera(scene.frameCamera(0, width, height));
+    auto buildStart = std::chrono::steady_clock::now();
     graph.build(desc, options);
+    const double buildMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - buildStart)
+            .count();
     graph.setSeed(seed);
     fs::create_directories(outDir);
 
     ReportInputs report;
     report.graphFile = o.graph.graph;
     report.scene = scene.json();
+    report.buildMs = buildMs;
     report.deviceName = ctx.deviceName();
     report.driver = ctx.driverName() + " " + ctx.driverInfo();
     report.width = width;

@@ -22,7 +22,7 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 // A path from the graph's defaults is relative to the graph file; one from the command line is
 // relative to the working directory.
 std::string relativeToGraph(const std::string& path, const graph::GraphDesc& desc) {
-    if (path.rfind("builtin:", 0) == 0 || fs::path(path).is_absolute() || desc.file.empty())
+    if (path == "none" || path.rfind("builtin:", 0) == 0 || fs::path(path).is_absolute() || desc.file.empty())
         return path;
     return (fs::path(desc.file).parent_path() / path).lexically_normal().string();
 }
@@ -102,7 +102,12 @@ RunScene::RunScene(const SceneOptions& o, const graph::GraphDesc& desc) {
         return;
     }
     auto t0 = std::chrono::steady_clock::now();
-    mScene = std::make_unique<scene::Scene>(scene::loadScene(spec));
+    try {
+        mScene = std::make_unique<scene::Scene>(scene::loadScene(spec));
+    } catch (const InputError& e) {
+        if (!o.scene.empty()) throw;  // the message names the --scene value already
+        throw InputError(desc.file, "/defaults/scene", e.what());
+    }
     mLoadMs = msSince(t0);
     mSpec = spec;
     if (camera.rfind("gltf:", 0) == 0) {

@@ -1,4 +1,5 @@
 // `fovea validate`: run every CPU compile stage (no device needed) and optionally dump the plan.
+#include <chrono>
 #include <iostream>
 
 #include "apps/fovea/Commands.h"
@@ -28,14 +29,18 @@ int validateCommand(const ValidateOptions& o) {
     // The scene is loaded on the CPU only: its features decide which passes are culled.
     RunScene scene(o.scene, desc);
     options.sceneFeatures = scene.features();
+    auto t0 = std::chrono::steady_clock::now();
     graph::CompiledPlan plan = graph::compileGraphPlan(desc, graph::passRegistry(), options);
+    const double compileMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     if (o.dump && o.json)
         std::cout << graph::dumpPlanJson(plan).dump(2) << "\n";
     else if (o.dump)
         std::cout << graph::dumpPlanText(plan);
     else
         std::cout << o.graph.graph << ": ok (" << plan.order.size() << " passes run, "
-                  << plan.nodes.size() - plan.order.size() << " culled)\n";
+                  << plan.nodes.size() - plan.order.size() << " culled; plan compiled in "
+                  << compileMs << " ms)\n";
     return kExitOk;
 }
 
