@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <functional>
 #include <set>
+#include <stdexcept>
 
 #include "core/graph/CompilerStages.h"
 #include "core/util/DidYouMean.h"
@@ -90,6 +91,15 @@ const FieldDesc& endpointField(const CompiledPlan& plan, const std::string& file
     return *f;
 }
 
+// Formats outside fovea's table are not integer ones as far as the compiler knows.
+bool isIntegerFormat(vk::Format format) {
+    try {
+        return gpu::formatIsUint(format);
+    } catch (const std::invalid_argument&) {
+        return false;
+    }
+}
+
 }  // namespace
 
 void checkEdges(const GraphDesc& desc, CompiledPlan& plan) {
@@ -108,6 +118,14 @@ void checkEdges(const GraphDesc& desc, CompiledPlan& plan) {
                              "format mismatch: '" + e.from.str() + "' is " +
                                  gpu::formatName(from.format) + " but '" + e.to.str() +
                                  "' expects " + gpu::formatName(to.format));
+        if (to.floatOnly && isIntegerFormat(from.format)) {
+            const PassNode& reader = plan.nodes[plan.findNode(e.to.pass)];
+            throw InputError(file, e.pointer,
+                             "format not readable: pass '" + reader.name + "' (" + reader.type +
+                                 ") reads input '" + e.to.field + "' as float, but '" +
+                                 e.from.str() + "' is the integer format " +
+                                 gpu::formatName(from.format));
+        }
         InputSource src;
         src.node = plan.findNode(e.from.pass);
         src.field = e.from.field;

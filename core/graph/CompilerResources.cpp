@@ -1,6 +1,7 @@
 // Compile stages 6-8: resource resolution, aliasing of transient images, barrier plan.
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "core/graph/CompilerStages.h"
 #include "core/util/Error.h"
@@ -87,6 +88,30 @@ bool ruleSize(const CompiledPlan& plan, size_t node, const FieldDesc& f, uint32_
     return false;
 }
 
+// A bypassed pass's outputs are filled by vkCmdCopyImage from its inputs, which needs equal size
+// and format. Checked here (not when pipelines exist) so `fovea validate` rejects what `fovea
+// run` would. An unconnected bypass input is cleared instead, so it needs no check.
+void checkBypassPairs(const CompiledPlan& plan) {
+    for (size_t n : plan.order) {
+        const PassNode& node = plan.nodes[n];
+        for (const auto& [input, output] : node.pass->bypass()) {
+            auto in = plan.inputs.find({n, input});
+            auto out = plan.resourceOf.find({n, output});
+            if (out == plan.resourceOf.end())
+                throw std::logic_error("pass type " + node.type + ": bypass into '" + output +
+                                       "', which is not an output");
+            if (in == plan.inputs.end()) continue;
+            const ResourcePlan& a = plan.resources[in->second.resource];
+            const ResourcePlan& b = plan.resources[out->second];
+            if (a.width != b.width || a.height != b.height || a.format != b.format || !a.isImage ||
+                !b.isImage)
+                throw InputError(plan.file, node.pointer,
+                                 "pass '" + node.name + "' bypasses '" + input + "' into '" +
+                                     output + "' but they differ in size or format");
+        }
+    }
+}
+
 }  // namespace
 
 void resolveResources(CompiledPlan& plan) {
@@ -152,6 +177,7 @@ void resolveResources(CompiledPlan& plan) {
             r.lastUse = std::max(r.lastUse, plan.positionOf(n));
         }
     }
+    checkBypassPairs(plan);
     for (const auto& [n, field] : plan.outputs) {
         if (!plan.nodes[n].alive) continue;
         ResourcePlan& r = plan.resources[plan.resourceOf.at({n, field})];

@@ -82,9 +82,12 @@ void GraphExecuteContext::bindFields(gpu::ComputePipeline& pipeline) {
         bool isBuffer = b.kind == gpu::DescriptorKind::StorageBuffer ||
                         b.kind == gpu::DescriptorKind::UniformBuffer;
         if (f->kind == FieldKind::Input && !connected(f->name)) {
-            // Optional input left open: bind a 1x1 zero image so the shader's descriptor is
-            // valid; the pass decides from connected() whether to read it.
-            if (!isBuffer) pipeline.bind(b.name, mGraph.dummyImage(b.imageFormat));
+            // Optional input left open: bind a 1x1 zero image (or a small zeroed buffer) so the
+            // shader's descriptor is valid; the pass decides from connected() whether to read it.
+            if (isBuffer)
+                pipeline.bind(b.name, mGraph.dummyBuffer());
+            else
+                pipeline.bind(b.name, mGraph.dummyImage(b.imageFormat));
             continue;
         }
         if (isBuffer)

@@ -117,6 +117,9 @@ public:
     virtual bool cacheable() const { return false; }
     // Called on reset/resize/camera cut so a pass can drop CPU-side temporal state.
     virtual void onReset() {}
+    // Which specialization ran (e.g. "lambert,emissive,no-punctual,no-textures,bounces=1"), for
+    // reports; empty for passes with a single variant.
+    virtual std::string variant() const { return {}; }
 
     const std::string& name() const { return mName; }
     const std::string& type() const { return mType; }

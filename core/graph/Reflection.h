@@ -31,6 +31,9 @@ struct FieldDesc {
     uint64_t bufferBytes = 0;
     bool optional = false;    // inputs: may stay unconnected
     bool persistent = false;  // outputs/internals: content survives between frames (never aliased)
+    // Inputs: the shader reads it as float (sampler2D / image2D), so an integer-format image
+    // (r32ui, ...) cannot be bound; the compiler rejects such an edge naming pass and field.
+    bool floatOnly = false;
     std::string doc;
 
     bool isImage() const { return size != SizeRule::Buffer; }
@@ -65,6 +68,10 @@ public:
     }
     FieldBuilder& persistent() {
         mDesc.persistent = true;
+        return *this;
+    }
+    FieldBuilder& floatOnly() {
+        mDesc.floatOnly = true;
         return *this;
     }
     FieldBuilder& doc(const std::string& text) {

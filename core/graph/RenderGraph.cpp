@@ -62,7 +62,37 @@ RenderGraph::RenderGraph(gpu::Context& gpu, const PassRegistry& registry)
 RenderGraph::~RenderGraph() = default;
 
 void RenderGraph::build(const GraphDesc& desc, const CompileOptions& options) {
+    // A graph that does not compile throws here and leaves the running graph as it was.
     CompiledPlan plan = compileGraphPlan(desc, mRegistry, options);
+    // Past this point the old graph is being replaced: a failure (allocation, a pass's compile)
+    // leaves no half-built graph behind, but an unbuilt one that runFrame() refuses to run.
+    mBuilt = false;
+    try {
+        install(desc, std::move(plan), options);
+    } catch (const std::exception& e) {
+        discardBuild(e.what());
+        throw;
+    } catch (...) {
+        discardBuild("unknown error");
+        throw;
+    }
+    mBuilt = true;
+    mBuildError.clear();
+}
+
+void RenderGraph::discardBuild(const std::string& error) {
+    mBuildError = error;
+    mResources.clear();
+    mKeptHistory.clear();
+    mBlocks.clear();
+    mPlan = CompiledPlan{};
+    mRecords.clear();
+    mLastCacheKey.clear();
+    mTimestamps.reset();
+    mFrame.framesSinceReset = 0;  // whatever is built next starts without history
+}
+
+void RenderGraph::install(const GraphDesc& desc, CompiledPlan plan, const CompileOptions& options) {
     bool sizeChanged = options.width != mFrame.width || options.height != mFrame.height;
     // Keep history rings of the previous build for reuse by identical resources.
     for (size_t i = 0; i < mResources.size(); ++i)
@@ -168,15 +198,7 @@ void RenderGraph::compilePasses() {
         PassNode& node = mPlan.nodes[n];
         GraphCompileContext ctx(*this, mPlan, n);
         node.pass->compile(ctx);
-        // Bypass pairs must be copyable: same size and format (checked once, here).
-        for (const auto& [input, output] : node.pass->bypass()) {
-            if (!mPlan.inputs.count({n, input})) continue;
-            ResourceExtent a = ctx.extent(input), b = ctx.extent(output);
-            if (a.width != b.width || a.height != b.height || a.format != b.format)
-                throw InputError(mPlan.file, node.pointer,
-                                 "pass '" + node.name + "' bypasses '" + input + "' into '" +
-                                     output + "' but they differ in size or format");
-        }
+        // Bypass pairs were checked for equal size and format by the compile stages.
     }
 }
 
@@ -233,6 +255,20 @@ const gpu::Image& RenderGraph::dummyImage(vk::Format format) {
     auto& slot = mDummies[format];
     if (!slot) slot = std::make_unique<gpu::Image>(mGpu, gpu::ImageDesc{.width = 1, .height = 1, .format = format, .debugName = "dummy"});
     return *slot;
+}
+
+const gpu::Buffer& RenderGraph::dummyBuffer() {
+    if (!mDummyBuffer) {
+        // Zero-filled, so a shader that reads an unconnected optional buffer sees count 0.
+        mDummyBuffer = std::make_unique<gpu::Buffer>(
+            mGpu, kDummyBufferBytes,
+            vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eUniformBuffer |
+                vk::BufferUsageFlagBits::eTransferDst | vk::BufferUsageFlagBits::eTransferSrc,
+            false, "dummy");
+        std::vector<std::byte> zeros(kDummyBufferBytes);
+        mDummyBuffer->upload(mGpu, zeros.data(), zeros.size());
+    }
+    return *mDummyBuffer;
 }
 
 const gpu::Image& RenderGraph::image(const std::string& resourceName) const {

@@ -65,7 +65,9 @@ public:
     // The `camera_info` uniform buffer (shaders/common/camera.glsl), refreshed before each frame.
     const gpu::Buffer& cameraBuffer() const { return *mCameraBuffer; }
 
+    // Throws RuntimeError when the graph is not built (no build() yet, or the last one failed).
     FrameTiming runFrame();
+    bool built() const { return mBuilt; }
 
     const CompiledPlan& plan() const { return mPlan; }
     const GraphDesc& desc() const { return mDesc; }
@@ -86,8 +88,12 @@ public:
     const gpu::Buffer& bufferFor(size_t node, const std::string& field) const;
     bool historyValidFor(size_t node, const std::string& input) const;
     const gpu::Image& dummyImage(vk::Format format);
+    const gpu::Buffer& dummyBuffer();  // kDummyBufferBytes of zeros
 
 private:
+    // The part of build() after the plan compiled; on failure build() calls discardBuild().
+    void install(const GraphDesc& desc, CompiledPlan plan, const CompileOptions& options);
+    void discardBuild(const std::string& error);
     void allocate();
     void compilePasses();
     void recordPass(const vk::raii::CommandBuffer& cmd, size_t node, double& passCpuMs);
@@ -105,6 +111,8 @@ private:
     std::map<std::string, std::unique_ptr<RuntimeResource>> mKeptHistory;  // across rebuilds
     std::vector<std::shared_ptr<gpu::MemoryBlock>> mBlocks;
     std::map<vk::Format, std::unique_ptr<gpu::Image>> mDummies;
+    static constexpr size_t kDummyBufferBytes = 256;
+    std::unique_ptr<gpu::Buffer> mDummyBuffer;
     std::vector<uint64_t> mLastCacheKey;  // per node; 0 = never ran
     std::unique_ptr<gpu::TimestampPool> mTimestamps;
     std::unique_ptr<vk::raii::CommandPool> mCommandPool;
@@ -115,6 +123,8 @@ private:
     std::unique_ptr<scene::FrameCamera> mCamera;
     std::unique_ptr<gpu::Buffer> mCameraBuffer;  // host-visible; frames run one at a time
     uint64_t mAllocatedTransient = 0, mAllocatedPersistent = 0;
+    bool mBuilt = false;
+    std::string mBuildError;  // what the last failed build() threw
 };
 
 }  // namespace fovea::graph

@@ -162,6 +162,12 @@ void RenderGraph::recordPass(const vk::raii::CommandBuffer& cmd, size_t n, doubl
 }
 
 FrameTiming RenderGraph::runFrame() {
+    if (!mBuilt) {
+        if (mBuildError.empty())
+            throw RuntimeError("runFrame: the render graph is not built (call build() first)");
+        throw RuntimeError("runFrame: the render graph is not built: the last build() failed (" +
+                           mBuildError + "); build it again");
+    }
     FrameTiming timing;
     const auto& cmd = *mCommandBuffer;
     auto t0 = Clock::now();
@@ -190,9 +196,10 @@ FrameTiming RenderGraph::runFrame() {
     timing.recordCpuMs = msSince(t0);
 
     auto t1 = Clock::now();
-    vk::CommandBuffer raw = *cmd;
-    mGpu.queue().submit(vk::SubmitInfo{.commandBufferCount = 1, .pCommandBuffers = &raw},
-                        **mFence);
+    // Through the context's submit: it holds the queue lock every other submit takes.
+    vk::CommandBufferSubmitInfo cmdInfo{.commandBuffer = *cmd};
+    mGpu.submit(vk::SubmitInfo2{.commandBufferInfoCount = 1, .pCommandBufferInfos = &cmdInfo},
+                **mFence);
     if (mGpu.device().waitForFences(**mFence, VK_TRUE, UINT64_MAX) != vk::Result::eSuccess)
         throw RuntimeError("waiting for the frame's fence failed");
     mGpu.device().resetFences(**mFence);

@@ -16,6 +16,9 @@ void writeWith(const std::filesystem::path& path, uint32_t w, uint32_t h, OIIO::
     auto out = OIIO::ImageOutput::create(path.string());
     if (!out) throw RuntimeError(path.string() + ": cannot create image: " + OIIO::geterror());
     OIIO::ImageSpec spec(int(w), int(h), 4, type);
+    // Our pixels carry straight (unassociated) alpha. Without this OIIO assumes premultiplied
+    // data and divides colour by alpha when writing a PNG, changing every non-opaque pixel.
+    spec.attribute("oiio:UnassociatedAlpha", 1);
     if (!out->open(path.string(), spec) || !out->write_image(type, data) || !out->close())
         throw RuntimeError(path.string() + ": cannot write image: " + out->geterror());
 }
@@ -31,19 +34,23 @@ void writeExr(const std::filesystem::path& path, const ImageRGBA& image) {
     writeWith(path, image.width, image.height, OIIO::TypeDesc::FLOAT, image.pixels.data());
 }
 
-void writePng(const std::filesystem::path& path, const ImageRGBA& image) {
+void writePng(const std::filesystem::path& path, const ImageRGBA& image, PngEncoding encoding) {
     std::vector<uint8_t> bytes(image.pixels.size());
     for (size_t i = 0; i < bytes.size(); ++i) {
-        bool alpha = i % 4 == 3;
-        float v = alpha ? std::clamp(image.pixels[i], 0.0f, 1.0f) : srgbEncode(image.pixels[i]);
-        if (!std::isfinite(v)) v = 0.0f;
+        // Alpha is coverage, never sRGB-encoded.
+        bool quantizeOnly = i % 4 == 3 || encoding == PngEncoding::AsIs;
+        float v = std::isfinite(image.pixels[i]) ? image.pixels[i] : 0.0f;
+        v = quantizeOnly ? std::clamp(v, 0.0f, 1.0f) : srgbEncode(v);
         bytes[i] = uint8_t(std::lround(v * 255.0f));
     }
     writeWith(path, image.width, image.height, OIIO::TypeDesc::UINT8, bytes.data());
 }
 
 ImageRGBA readImage(const std::filesystem::path& path) {
-    auto in = OIIO::ImageInput::open(path.string());
+    // Keep straight alpha as stored (OIIO would premultiply a PNG's colour by its alpha).
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto in = OIIO::ImageInput::open(path.string(), &config);
     if (!in) throw InputError(path.string(), "", "cannot read image: " + OIIO::geterror());
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)

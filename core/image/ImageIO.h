@@ -15,9 +15,18 @@ struct ImageRGBA {
 
 // Writes linear float RGBA (half-float is not used: goldens compare full precision).
 void writeExr(const std::filesystem::path& path, const ImageRGBA& image);
-// Clamps to [0,1] and applies the sRGB transfer function (values are assumed linear).
-void writePng(const std::filesystem::path& path, const ImageRGBA& image);
-// Reads any format OIIO knows as RGBA float (missing channels: 0, alpha 1).
+// How writePng turns pixel values into 8-bit codes. An image that is already display-encoded
+// (an 8-bit UNORM render target, e.g. Tonemap's `ldr`, which applied sRGB itself) must be
+// written as-is: encoding it again would brighten it twice.
+enum class PngEncoding {
+    Srgb,  // values are linear: clamp to [0,1], apply the sRGB transfer function (alpha linear)
+    AsIs,  // values are display-encoded in [0,1]: clamp and quantize only (k/255 -> k exactly)
+};
+// Writes 8-bit RGBA with straight (unassociated) alpha: colour is never divided by alpha.
+void writePng(const std::filesystem::path& path, const ImageRGBA& image,
+              PngEncoding encoding = PngEncoding::Srgb);
+// Reads any format OIIO knows as RGBA float (missing channels: 0, alpha 1), alpha as stored
+// (a PNG's colour is not premultiplied by its alpha).
 // Throws InputError naming the file when it cannot be read.
 ImageRGBA readImage(const std::filesystem::path& path);
 

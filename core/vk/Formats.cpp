@@ -79,6 +79,10 @@ bool formatIsUint(vk::Format format) {
     return require(format).isUint;
 }
 
+bool formatIsUnorm8(vk::Format format) {
+    return format == vk::Format::eR8G8B8A8Unorm || format == vk::Format::eR8Unorm;
+}
+
 std::string glslFormatQualifier(vk::Format format) {
     return require(format).name;
 }

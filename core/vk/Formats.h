@@ -25,6 +25,10 @@ uint32_t formatChannels(vk::Format format);
 // True for r32ui/rg32ui/rgba32ui: shaders must use uimage2D, and clears use uint values.
 bool formatIsUint(vk::Format format);
 
+// True for rgba8/r8 (8-bit UNORM): such images hold display-encoded values (e.g. Tonemap's
+// `ldr`), so image writers store them as-is instead of encoding them again.
+bool formatIsUnorm8(vk::Format format);
+
 // The GLSL image format layout qualifier ("rgba32f", "rgba8", "r32ui").
 std::string glslFormatQualifier(vk::Format format);
 

@@ -5,15 +5,20 @@
 namespace fovea::passes {
 
 void CombinePass::params(graph::ParamVisitor& v) {
-    v.add("weightA", mWeightA, 1.0f, "weight of input a", {-1e6, 1e6});
-    v.add("weightB", mWeightB, 1.0f, "weight of input b", {-1e6, 1e6});
+    v.add("weightA", mWeightA, 1.0f, "weight of input a (all four channels, alpha included)",
+          {-1e6, 1e6});
+    v.add("weightB", mWeightB, 1.0f, "weight of input b (all four channels, alpha included)",
+          {-1e6, 1e6});
     v.add("absolute", mAbsolute, false, "take the absolute value of the sum");
 }
 
 void CombinePass::reflect(graph::Reflection& r) const {
-    r.input("a").doc("first image");
-    r.input("b").sameAs("a").optional().doc("second image (optional; may be a delayed history)");
-    r.output("result", vk::Format::eR32G32B32A32Sfloat).sameAs("a").doc("weightA*a + weightB*b");
+    r.input("a").floatOnly().doc("first image");
+    r.input("b").sameAs("a").optional().floatOnly().doc(
+        "second image (optional; may be a delayed history)");
+    r.output("result", vk::Format::eR32G32B32A32Sfloat)
+        .sameAs("a")
+        .doc("weightA*a + weightB*b on all four channels, alpha included");
 }
 
 void CombinePass::compile(graph::CompileContext& ctx) {

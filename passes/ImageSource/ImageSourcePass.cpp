@@ -13,10 +13,14 @@ const std::vector<std::string> kPatterns = {"constant", "gradient", "noise", "fr
 void ImageSourcePass::params(graph::ParamVisitor& v) {
     v.add("pattern", mPattern, "gradient",
           "constant: 'value' everywhere; gradient: (u, v, 1-u) * value; noise: uniform [0,1) per "
-          "channel from a hash of (pixel, seed) * value; frame-index: the frame number * value",
+          "channel from a hash of (pixel, seed) * value; frame-index: the frame number * "
+          "(value, 1), so alpha is the frame number too; other patterns write alpha 1",
           kPatterns);
     v.add("value", mValue, glm::vec3(1.0f), "colour (constant) or per-channel scale (others)");
-    v.add("seed", mSeed, 0, "noise seed (added to the run's --seed)", {0, 2147483647});
+    v.add("seed", mSeed, 0,
+          "noise seed: the shader's seed is seed + 7919 * run seed (--seed), plus "
+          "104729 * frame index when animate (unsigned 32-bit, wrapping)",
+          {0, 2147483647});
     v.add("animate", mAnimate, false, "noise: change the pattern every frame");
 }
 

@@ -19,7 +19,7 @@ void TonemapPass::params(graph::ParamVisitor& v) {
 }
 
 void TonemapPass::reflect(graph::Reflection& r) const {
-    r.input("color").doc("linear HDR colour, any format");
+    r.input("color").floatOnly().doc("linear HDR colour, any float or unorm format");
     r.output("ldr", vk::Format::eR8G8B8A8Unorm).sameAs("color").doc("display colour");
 }
 

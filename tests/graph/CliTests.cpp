@@ -488,8 +488,11 @@ TEST(CliHelp, EverySubcommandHasHelp) {
 
 TEST(CliValidate, EveryShippedGraphIsValid) {
     std::vector<fs::path> graphs;
+    // graphs/cameras/ holds camera paths, not graphs (CameraPathTests load those).
     for (const auto& e : fs::recursive_directory_iterator(kRepo / "graphs"))
-        if (e.is_regular_file() && e.path().extension() == ".json") graphs.push_back(e.path());
+        if (e.is_regular_file() && e.path().extension() == ".json" &&
+            e.path().parent_path().filename() != "cameras")
+            graphs.push_back(e.path());
     std::sort(graphs.begin(), graphs.end());
     ASSERT_GE(graphs.size(), 5u) << "graphs/ should hold demo.json and graphs/tests/*.json";
     for (const auto& g : graphs) {
@@ -576,4 +579,57 @@ TEST(CliPasses, JsonListsTheUtilityPasses) {
     Result text = cli({"passes"});
     ASSERT_EQ(text.code, 0) << text.describe();
     for (const auto& [type, params] : kUtility) EXPECT_TRUE(contains(text.out, type)) << type;
+}
+
+// --- fixes: unknown subcommand, --save-frames trailing comma, validate = run for bypass pairs,
+// PNG of an rgba8 output written as-is ------------------------------------------------------
+
+TEST(CliFixes, UnknownSubcommandIsNamed) {
+    expectInputError(cli({"frobnicate"}), {"unknown subcommand 'frobnicate'", "run", "validate"});
+    expectInputError(cli({"valdate", kDemo.string()}),
+                     {"unknown subcommand 'valdate'", "did you mean 'validate'"});
+    // Known subcommands keep their own errors.
+    expectInputError(cli({"run"}), {"graph"});
+    EXPECT_FALSE(contains(cli({"run"}).err, "unknown subcommand"));
+}
+
+TEST(CliFixes, SaveFramesTrailingOrLeadingCommaIsRejected) {
+    // An empty item, also a trailing one (std::getline drops it), is an error.
+    TempDir tmp;
+    const std::string out = (tmp / "out").string();
+    for (const std::string frames : {"0,", "1,0,", ",0", ","}) {
+        Result r = cli({"run", kDemo.string(), "--out", out, "--size", "8x8", "--frames", "2",
+                        "--save-frames", frames});
+        expectInputError(r, {"--save-frames", "'" + frames + "'"});
+    }
+    EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(CliFixes, ValidateRejectsABypassSizeMismatchLikeRun) {
+    const fs::path bad = kRepo / "tests" / "graph" / "bad" / "compile" / "bypass_size_mismatch.json";
+    const std::string message =
+        bad.string() + ": /passes/1: pass 'b' bypasses 'color' into 'result' but they differ in "
+                       "size or format";
+    Result v = cli({"validate", bad.string()});
+    expectInputError(v, {message});
+    EXPECT_FALSE(contains(v.out, "ok")) << v.describe();
+    TempDir tmp;
+    expectInputError(cli({"run", bad.string(), "--out", (tmp / "out").string()}), {message});
+}
+
+TEST(CliFixes, PngOfAnRgba8OutputHoldsItsBytes) {
+    // Needs `fovea run` to write 8-bit UNORM outputs with image::PngEncoding::AsIs
+    // (apps/fovea/RunCommand.cpp): the PNG of tm.ldr then equals its EXR * 255 exactly.
+    TempDir tmp;
+    const fs::path out = tmp / "out";
+    Result r = runSmall(kDemo, out);
+    ASSERT_EQ(r.code, 0) << r.describe();
+    std::vector<float> exr = pixels(out / "tm.ldr.frame0001.exr");
+    std::vector<float> png = pixels(out / "tm.ldr.frame0001.png");  // read back as k / 255
+    ASSERT_EQ(exr.size(), png.size());
+    ASSERT_FALSE(exr.empty());
+    size_t differ = 0;
+    for (size_t i = 0; i < exr.size(); ++i)
+        differ += std::lround(exr[i] * 255.0f) != std::lround(png[i] * 255.0f);
+    EXPECT_EQ(differ, 0u) << "the PNG of an rgba8 output was encoded again";
 }

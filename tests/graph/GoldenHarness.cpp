@@ -198,7 +198,10 @@ fs::path writeActual(const GoldenSpec& spec, const RenderedOutput& out) {
     fs::create_directories(dir);
     fs::path exr = dir / (out.output + ".actual.exr");
     image::writeExr(exr, out.image);
-    image::writePng(dir / (out.output + ".actual.png"), out.image);
+    // An 8-bit output (Tonemap's ldr) is display-encoded already: write it as-is.
+    bool encoded = gpu::formatIsUnorm8(gpu::parseFormat(out.format));
+    image::writePng(dir / (out.output + ".actual.png"), out.image,
+                    encoded ? image::PngEncoding::AsIs : image::PngEncoding::Srgb);
     return exr;
 }
 

@@ -1,0 +1,324 @@
+// CPU regression tests for fixes in the foundation's utility passes and image output:
+//  - PNG writing: 8-bit UNORM (display-encoded) images are written as-is, not sRGB-encoded again;
+//  - Blit/Tonemap/Combine reject integer formats their shaders cannot read or write, at compile,
+//    naming pass and field/parameter;
+//  - bypass pairs of different size/format are rejected by the compile stages (so `fovea
+//    validate` agrees with `fovea run`);
+//  - the parameter documentation of ImageSource/Combine says what the code does, and the pass
+//    docs (docs/passes/*.md) carry the same strings.
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/graph/CompilerStages.h"
+#include "core/graph/GraphDesc.h"
+#include "core/graph/PassRegistry.h"
+#include "core/image/ImageIO.h"
+#include "core/util/Error.h"
+#include "core/vk/Formats.h"
+#include "passes/Blit/BlitPass.h"
+#include "passes/Combine/CombinePass.h"
+#include "passes/ImageSource/ImageSourcePass.h"
+#include "passes/Tonemap/TonemapPass.h"
+
+namespace fs = std::filesystem;
+using namespace fovea;
+using namespace fovea::graph;
+
+namespace {
+
+// --- PNG ------------------------------------------------------------------------------------
+
+fs::path tempFile(const std::string& name) {
+    return fs::temp_directory_path() / ("fovea_utilfix_" + std::to_string(::getpid()) + "_" + name);
+}
+
+std::vector<uint8_t> readPngBytes(const fs::path& path, int& width, int& height) {
+    OIIO::ImageSpec config;  // the bytes as stored: no premultiplication by alpha
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto in = OIIO::ImageInput::open(path.string(), &config);
+    if (!in) return {};
+    const OIIO::ImageSpec& spec = in->spec();
+    width = spec.width;
+    height = spec.height;
+    EXPECT_EQ(spec.nchannels, 4);
+    std::vector<uint8_t> bytes(size_t(spec.width) * spec.height * 4);
+    EXPECT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, bytes.data()));
+    return bytes;
+}
+
+// Every byte value 0..255 on every channel, as an rgba8 image reads back (k / 255).
+image::ImageRGBA allByteValues(std::vector<uint8_t>& bytes) {
+    image::ImageRGBA img{16, 16, {}};
+    for (uint32_t p = 0; p < 256; ++p)
+        for (uint32_t c = 0; c < 4; ++c) bytes.push_back(uint8_t((p + 67 * c) % 256));
+    for (uint8_t b : bytes) img.pixels.push_back(float(b) / 255.0f);
+    return img;
+}
+
+TEST(UtilityFixPng, Unorm8ImageIsWrittenAsIs) {
+    std::vector<uint8_t> expected;
+    image::ImageRGBA img = allByteValues(expected);
+    const fs::path path = tempFile("asis.png");
+    image::writePng(path, img, image::PngEncoding::AsIs);
+    int w = 0, h = 0;
+    std::vector<uint8_t> got = readPngBytes(path, w, h);
+    fs::remove(path);
+    ASSERT_EQ(w, 16);
+    ASSERT_EQ(h, 16);
+    ASSERT_EQ(got.size(), expected.size());
+    size_t differ = 0;
+    for (size_t i = 0; i < got.size(); ++i) differ += got[i] != expected[i];
+    EXPECT_EQ(differ, 0u) << "bytes of a display-encoded image changed on the way to PNG";
+}
+
+TEST(UtilityFixPng, LinearImageIsEncodedOnceAndAlphaStaysLinear) {
+    // Linear 0.5 -> sRGB 0.7354 -> 188; alpha 0.5 -> 128 (never encoded).
+    image::ImageRGBA img{1, 1, {0.5f, 0.0f, 1.0f, 0.5f}};
+    const fs::path path = tempFile("srgb.png");
+    image::writePng(path, img);  // default: linear input
+    int w = 0, h = 0;
+    std::vector<uint8_t> got = readPngBytes(path, w, h);
+    fs::remove(path);
+    ASSERT_EQ(got.size(), 4u);
+    EXPECT_EQ(got[0], 188);
+    EXPECT_EQ(got[1], 0);
+    EXPECT_EQ(got[2], 255);
+    EXPECT_EQ(got[3], 128);
+}
+
+TEST(UtilityFixPng, Unorm8FormatsAreTheDisplayEncodedOnes) {
+    EXPECT_TRUE(gpu::formatIsUnorm8(vk::Format::eR8G8B8A8Unorm));
+    EXPECT_TRUE(gpu::formatIsUnorm8(vk::Format::eR8Unorm));
+    EXPECT_FALSE(gpu::formatIsUnorm8(vk::Format::eR32G32B32A32Sfloat));
+    EXPECT_FALSE(gpu::formatIsUnorm8(vk::Format::eR16G16B16A16Sfloat));
+    EXPECT_FALSE(gpu::formatIsUnorm8(vk::Format::eR32Uint));
+}
+
+// --- integer formats ------------------------------------------------------------------------
+
+// A source of an integer image (what a G-buffer's ids look like). Never executed.
+class UintSource : public Pass {
+public:
+    void reflect(Reflection& r) const override { r.output("ids", vk::Format::eR32Uint).screen(); }
+    void execute(ExecuteContext&) override {}
+};
+
+template <class T>
+PassTypeInfo typeInfo(const char* type) {
+    return {type, "test", [] { return std::make_unique<T>(); }};
+}
+
+const PassRegistry& integerRegistry() {
+    static PassRegistry registry = [] {
+        PassRegistry r;
+        r.add(typeInfo<UintSource>("UintSource"));
+        r.add(typeInfo<passes::ImageSourcePass>("ImageSource"));
+        r.add(typeInfo<passes::BlitPass>("Blit"));
+        r.add(typeInfo<passes::TonemapPass>("Tonemap"));
+        r.add(typeInfo<passes::CombinePass>("Combine"));
+        return r;
+    }();
+    return registry;
+}
+
+CompileOptions options32() {
+    CompileOptions o;
+    o.width = 32;
+    o.height = 32;
+    return o;
+}
+
+// The InputError message compiling `text` gives, or "<no error>".
+std::string compileError(const std::string& text, const PassRegistry& registry) {
+    try {
+        compileGraphPlan(parseGraphText(text, "g.json"), registry, options32());
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "<no error>";
+}
+
+// ids -> <type>.<field> (plus a float source on the other Combine input).
+std::string integerInto(const std::string& type, const std::string& field,
+                        const std::string& output) {
+    std::string edges = R"({ "from": "ids.ids", "to": "p.)" + field + R"(" })";
+    if (type == "Combine")
+        edges += std::string(R"(, { "from": "f.color", "to": "p.)") + (field == "a" ? "b" : "a") +
+                 R"(" })";
+    return R"({ "version": 1,
+      "passes": [ { "name": "ids", "type": "UintSource" }, { "name": "f", "type": "ImageSource" },
+                  { "name": "p", "type": ")" +
+           type + R"(" } ],
+      "edges": [ )" +
+           edges + R"( ], "outputs": [ "p.)" + output + R"(" ] })";
+}
+
+void expectIntegerRejected(const std::string& type, const std::string& field,
+                           const std::string& output) {
+    SCOPED_TRACE(type + "." + field);
+    std::string error = compileError(integerInto(type, field, output), integerRegistry());
+    EXPECT_EQ(error.rfind("g.json: /edges/0: ", 0), 0u) << error;
+    EXPECT_NE(error.find("pass 'p' (" + type + ")"), std::string::npos) << error;
+    EXPECT_NE(error.find("input '" + field + "'"), std::string::npos) << error;
+    EXPECT_NE(error.find("r32ui"), std::string::npos) << error;
+}
+
+TEST(UtilityFixFormats, TonemapRejectsAnIntegerInput) {
+    expectIntegerRejected("Tonemap", "color", "ldr");
+}
+
+TEST(UtilityFixFormats, CombineRejectsIntegerInputs) {
+    expectIntegerRejected("Combine", "a", "result");
+    expectIntegerRejected("Combine", "b", "result");
+}
+
+TEST(UtilityFixFormats, BlitRejectsAnIntegerInput) {
+    expectIntegerRejected("Blit", "color", "result");
+}
+
+TEST(UtilityFixFormats, BlitOffersNoIntegerOutputFormat) {
+    for (const std::string format : {"r32ui", "rg32ui", "rgba32ui"}) {
+        SCOPED_TRACE(format);
+        std::string error = compileError(R"({ "version": 1,
+          "passes": [ { "name": "f", "type": "ImageSource" },
+                      { "name": "b", "type": "Blit", "params": { "format": ")" +
+                                             format + R"(" } } ],
+          "edges": [ { "from": "f.color", "to": "b.color" } ], "outputs": [ "b.result" ] })",
+                                         integerRegistry());
+        EXPECT_EQ(error.rfind("g.json: /passes/1/params/format: '" + format + "' is not one of", 0),
+                  0u)
+            << error;
+    }
+    // Every float/unorm format is still offered.
+    passes::BlitPass blit;
+    bool found = false;
+    for (const auto& p : describeParams(blit)) {
+        if (p["name"] != "format") continue;
+        found = true;
+        for (const auto& name : gpu::formatNames()) {
+            bool offered =
+                std::find(p["choices"].begin(), p["choices"].end(), name) != p["choices"].end();
+            EXPECT_EQ(offered, !gpu::formatIsUint(gpu::parseFormat(name))) << name;
+        }
+    }
+    EXPECT_TRUE(found);
+}
+
+TEST(UtilityFixFormats, FloatAndUnormInputsStillCompile) {
+    // rgba8 (unorm) into Combine and Tonemap; rgba16f through Blit.
+    EXPECT_EQ(compileError(R"({ "version": 1,
+      "passes": [ { "name": "f", "type": "ImageSource" },
+                  { "name": "b", "type": "Blit", "params": { "format": "rgba16f" } },
+                  { "name": "t", "type": "Tonemap" }, { "name": "c", "type": "Combine" },
+                  { "name": "t2", "type": "Tonemap" } ],
+      "edges": [ { "from": "f.color", "to": "b.color" }, { "from": "b.result", "to": "t.color" },
+                 { "from": "t.ldr", "to": "c.a" }, { "from": "c.result", "to": "t2.color" } ],
+      "outputs": [ "t2.ldr" ] })",
+                           integerRegistry()),
+              "<no error>");
+}
+
+// --- bypass pairs at compile ------------------------------------------------------------------
+
+const fs::path kBadCompile = fs::path(FOVEA_TEST_DIR) / "graph" / "bad" / "compile";
+
+TEST(UtilityFixBypass, SizeOrFormatMismatchFailsInTheCompileStages) {
+    registerBuiltinPasses();
+    const fs::path file = kBadCompile / "bypass_size_mismatch.json";
+    try {
+        compileGraphPlan(parseGraphFile(file), passRegistry(), options32());
+        ADD_FAILURE() << "compiled";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  file.string() +
+                      ": /passes/1: pass 'b' bypasses 'color' into 'result' but they "
+                      "differ in size or format");
+    }
+    auto blit = [](const std::string& params) {
+        return R"({ "version": 1, "passes": [ { "name": "src", "type": "ImageSource" },
+          { "name": "b", "type": "Blit", "params": )" +
+               params + R"( } ],
+          "edges": [ { "from": "src.color", "to": "b.color" } ], "outputs": [ "b.result" ] })";
+    };
+    EXPECT_EQ(compileError(blit(R"({ "activeEvery": 3, "format": "rgba16f" })"), passRegistry()),
+              "g.json: /passes/1: pass 'b' bypasses 'color' into 'result' but they differ in "
+              "size or format");
+    // Equal size and format, or no bypass at all: fine.
+    EXPECT_EQ(compileError(blit(R"({ "activeEvery": 3 })"), passRegistry()), "<no error>");
+    EXPECT_EQ(compileError(blit(R"({ "scale": 0.5, "format": "rgba16f" })"), passRegistry()),
+              "<no error>");
+}
+
+TEST(UtilityFixBypass, ACulledBypassPassIsNotChecked) {
+    registerBuiltinPasses();
+    // The mismatching Blit is disabled: it never runs, so it cannot fail a copy.
+    EXPECT_EQ(compileError(R"({ "version": 1, "passes": [ { "name": "src", "type": "ImageSource" },
+          { "name": "b", "type": "Blit", "enabled": false,
+            "params": { "activeEvery": 2, "scale": 0.5 } } ],
+          "edges": [ { "from": "src.color", "to": "b.color" } ],
+          "outputs": [ "b.result", "src.color" ] })",
+                           passRegistry()),
+              "<no error>");
+}
+
+// --- documentation says what the code does ----------------------------------------------------
+
+std::string paramDoc(Pass& pass, const std::string& name) {
+    for (const auto& p : describeParams(pass))
+        if (p["name"] == name) return p["doc"];
+    return "";
+}
+
+std::string readText(const fs::path& path) {
+    std::ifstream stream(path, std::ios::binary);
+    std::stringstream buffer;
+    buffer << stream.rdbuf();
+    return buffer.str();
+}
+
+TEST(UtilityFixDocs, ImageSourceSeedDocStatesTheFormula) {
+    passes::ImageSourcePass source;
+    const std::string seed = paramDoc(source, "seed");
+    EXPECT_EQ(seed.find("added to"), std::string::npos) << seed;
+    EXPECT_NE(seed.find("seed + 7919 * run seed"), std::string::npos) << seed;
+    EXPECT_NE(seed.find("104729 * frame index"), std::string::npos) << seed;
+    const std::string pattern = paramDoc(source, "pattern");
+    EXPECT_NE(pattern.find("alpha is the frame number"), std::string::npos) << pattern;
+}
+
+TEST(UtilityFixDocs, CombineDocSaysAlphaIsCombined) {
+    passes::CombinePass combine;
+    EXPECT_NE(paramDoc(combine, "weightA").find("alpha included"), std::string::npos);
+    EXPECT_NE(paramDoc(combine, "weightB").find("alpha included"), std::string::npos);
+}
+
+TEST(UtilityFixDocs, PassDocsCarryTheParameterDocStrings) {
+    // docs/passes/<Type>.md copies every parameter's doc string from `fovea passes --json`.
+    const fs::path docs = fs::path(FOVEA_TEST_DIR).parent_path() / "docs" / "passes";
+    std::vector<std::pair<std::string, std::unique_ptr<Pass>>> types;
+    types.emplace_back("ImageSource", std::make_unique<passes::ImageSourcePass>());
+    types.emplace_back("Combine", std::make_unique<passes::CombinePass>());
+    types.emplace_back("Blit", std::make_unique<passes::BlitPass>());
+    types.emplace_back("Tonemap", std::make_unique<passes::TonemapPass>());
+    for (auto& [type, pass] : types) {
+        const std::string text = readText(docs / (type + ".md"));
+        ASSERT_FALSE(text.empty()) << type;
+        for (const auto& p : describeParams(*pass)) {
+            const std::string doc = p["doc"];
+            EXPECT_NE(text.find(doc), std::string::npos)
+                << "docs/passes/" << type << ".md lacks the doc of '"
+                << p["name"].get<std::string>() << "': " << doc;
+        }
+    }
+}
+
+}  // namespace
