@@ -17,7 +17,7 @@ constexpr int kExitInput = 2;
 
 struct GraphOptions {
     std::string graph;
-    std::string size;  // "WxH", empty = graph default
+    std::string size;               // "WxH", empty = graph default
     std::vector<std::string> sets;  // pass.param=value
     bool noAliasing = false;
 };
@@ -25,7 +25,7 @@ struct GraphOptions {
 struct RunOptions {
     GraphOptions graph;
     SceneOptions scene;
-    int frames = 0;  // 0 = graph default (or 1)
+    int frames = 0;     // 0 = graph default (or 1)
     int64_t seed = -1;  // -1 = graph default (or 0)
     std::string out;
     std::string saveFrames = "last";

@@ -40,8 +40,9 @@ graph::GraphDesc loadGraph(const GraphOptions& options) {
         for (auto& p : desc.passes)
             if (p.name == passName) target = &p;
         if (!target)
-            throw InputError(flag, "", "graph has no pass '" + passName + "'" +
-                                           didYouMean(passName, desc.passNames()));
+            throw InputError(
+                flag, "",
+                "graph has no pass '" + passName + "'" + didYouMean(passName, desc.passNames()));
         if (!registry.find(target->type)) continue;  // reported with its pointer at compile
         auto pass = registry.create(target->type, target->name);
         target->params[param] = graph::parseParamText(*pass, param, value, flag);

@@ -56,8 +56,8 @@ int passesCommand(const PassesOptions& o) {
     std::vector<std::string> types = registry.types();
     if (!o.type.empty()) {
         if (!registry.find(o.type))
-            throw InputError("fovea passes", "", "unknown pass type '" + o.type + "'" +
-                                                     didYouMean(o.type, types));
+            throw InputError("fovea passes", "",
+                             "unknown pass type '" + o.type + "'" + didYouMean(o.type, types));
         types = {o.type};
     }
     nlohmann::json all = nlohmann::json::array();
@@ -69,9 +69,9 @@ int passesCommand(const PassesOptions& o) {
     for (const auto& p : all) {
         std::cout << p["type"].get<std::string>() << " — " << p["doc"].get<std::string>() << "\n";
         for (const auto& f : p["fields"])
-            std::cout << "    " << f["kind"].get<std::string>() << " " << f["name"].get<std::string>()
-                      << "  [" << f["format"].get<std::string>() << ", "
-                      << f["size"].get<std::string>()
+            std::cout << "    " << f["kind"].get<std::string>() << " "
+                      << f["name"].get<std::string>() << "  [" << f["format"].get<std::string>()
+                      << ", " << f["size"].get<std::string>()
                       << (f["optional"].get<bool>() ? ", optional" : "")
                       << (f["persistent"].get<bool>() ? ", persistent" : "") << "]  "
                       << f["doc"].get<std::string>() << "\n";

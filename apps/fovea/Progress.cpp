@@ -12,8 +12,11 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
 }  // namespace
 
 Progress::Progress(uint32_t frames, uint32_t samplesPerFrame, bool quiet)
-    : mFrames(frames), mSamplesPerFrame(samplesPerFrame), mQuiet(quiet),
-      mStart(std::chrono::steady_clock::now()), mLastDraw(mStart) {}
+    : mFrames(frames),
+      mSamplesPerFrame(samplesPerFrame),
+      mQuiet(quiet),
+      mStart(std::chrono::steady_clock::now()),
+      mLastDraw(mStart) {}
 
 void Progress::update(uint32_t framesDone) {
     if (mQuiet || mFrames <= 1) return;

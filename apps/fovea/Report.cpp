@@ -35,6 +35,11 @@ nlohmann::json buildReport(const graph::RenderGraph& graph, const ReportInputs& 
                   {"reason", rec.reason},
                   {"executions", rec.executions},
                   {"gpu_ms", statsJson(computeStats(rec.gpuMs))}};
+        // Which shader specialization ran (scene features, BRDF, ...), for passes that have one.
+        if (node.pass) {
+            std::string variant = node.pass->variant();
+            if (!variant.empty()) p["variant"] = variant;
+        }
         passes.push_back(p);
     }
     return {{"report_version", kReportSchemaVersion},

@@ -3,6 +3,7 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -14,6 +15,7 @@
 #include "core/image/ImageIO.h"
 #include "core/util/Error.h"
 #include "core/vk/Context.h"
+#include "core/vk/Formats.h"
 #include "core/vk/Resources.h"
 
 namespace fovea::app {
@@ -45,8 +47,9 @@ namespace {
 std::set<uint32_t> parseSaveFrames(const std::string& text, uint32_t frames) {
     std::set<uint32_t> out;
     if (text.empty())
-        throw InputError("--save-frames", "", "expected 'last', 'all', 'none' or a comma list "
-                                              "of frame numbers, got ''");
+        throw InputError("--save-frames", "",
+                         "expected 'last', 'all', 'none' or a comma list "
+                         "of frame numbers, got ''");
     if (text == "none") return out;
     if (text == "last") return {frames - 1};
     if (text == "all") {
@@ -61,11 +64,14 @@ std::set<uint32_t> parseSaveFrames(const std::string& text, uint32_t frames) {
         char* end = nullptr;
         unsigned long f = std::strtoul(item.c_str(), &end, 10);
         if (item.empty() || *end != '\0')
-            throw InputError("--save-frames", "", "expected 'last', 'all', 'none' or a comma "
-                                                  "list of frame numbers, got '" + text + "'");
+            throw InputError("--save-frames", "",
+                             "expected 'last', 'all', 'none' or a comma "
+                             "list of frame numbers, got '" +
+                                 text + "'");
         if (f >= frames)
-            throw InputError("--save-frames", "", "frame " + item + " is not run (--frames " +
-                                                      std::to_string(frames) + ")");
+            throw InputError(
+                "--save-frames", "",
+                "frame " + item + " is not run (--frames " + std::to_string(frames) + ")");
         out.insert(uint32_t(f));
     }
     return out;
@@ -83,20 +89,24 @@ int runCommand(const RunOptions& o) {
     if (o.frames < 0) throw InputError("--frames", "", "must be at least 1");
     uint32_t frames = o.frames > 0 ? uint32_t(o.frames) : desc.defaults.frames.value_or(1);
     uint64_t seed = o.seed >= 0 ? uint64_t(o.seed) : desc.defaults.seed.value_or(0);
+    // The device outlives the scene's GPU buffers (declared first, destroyed last), but is
+    // created only after every input was checked: bad input fails fast, without a device.
+    std::optional<gpu::Context> device;
     RunScene scene(o.scene, desc);
     std::set<uint32_t> save = parseSaveFrames(o.saveFrames, frames);
-    fs::path outDir = o.out.empty() ? fs::path("out") / (desc.name.empty() ? "run" : desc.name)
-                                    : fs::path(o.out);
+    fs::path outDir =
+        o.out.empty() ? fs::path("out") / (desc.name.empty() ? "run" : desc.name) : fs::path(o.out);
     if (fs::exists(outDir) && !fs::is_directory(outDir))
         throw InputError("--out", "", "'" + outDir.string() + "' exists and is not a directory");
     if (fs::exists(outDir) && !fs::is_empty(outDir) && !o.overwrite)
-        throw InputError("--out", "", "directory '" + outDir.string() +
-                                          "' is not empty; pass --overwrite to replace its files");
+        throw InputError("--out", "",
+                         "directory '" + outDir.string() +
+                             "' is not empty; pass --overwrite to replace its files");
 
     gpu::ContextOptions ctxOptions;
     ctxOptions.device = o.device;
     ctxOptions.validation = o.validation;
-    gpu::Context ctx(ctxOptions);
+    gpu::Context& ctx = device.emplace(ctxOptions);
     if (!o.quiet)
         std::cerr << "fovea: device " << ctx.deviceName() << " (" << ctx.driverName() << " "
                   << ctx.driverInfo() << ")\n";
@@ -150,7 +160,12 @@ int runCommand(const RunOptions& o) {
                 }
                 image::ImageRGBA img = download(ctx, graph.image(out.source.str()));
                 image::writeExr(outDir / (base + ".exr"), img);
-                image::writePng(outDir / (base + ".png"), img);
+                // An 8-bit UNORM output (e.g. Tonemap's) is display-encoded already.
+                const bool displayEncoded =
+                    gpu::formatIsUnorm8(graph.image(out.source.str()).format());
+                image::writePng(
+                    outDir / (base + ".png"), img,
+                    displayEncoded ? image::PngEncoding::AsIs : image::PngEncoding::Srgb);
                 report.outputs.push_back(base + ".exr");
                 report.outputs.push_back(base + ".png");
             }

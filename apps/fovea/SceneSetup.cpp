@@ -22,7 +22,8 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 // A path from the graph's defaults is relative to the graph file; one from the command line is
 // relative to the working directory.
 std::string relativeToGraph(const std::string& path, const graph::GraphDesc& desc) {
-    if (path == "none" || path.rfind("builtin:", 0) == 0 || fs::path(path).is_absolute() || desc.file.empty())
+    if (path == "none" || path.rfind("builtin:", 0) == 0 || fs::path(path).is_absolute() ||
+        desc.file.empty())
         return path;
     return (fs::path(desc.file).parent_path() / path).lexically_normal().string();
 }
@@ -34,8 +35,9 @@ scene::CameraDesc gltfCamera(const scene::Scene& s, const std::string& which) {
     unsigned long index = std::strtoul(which.c_str(), &end, 10);
     if (!which.empty() && *end == '\0') {
         if (index >= s.cameras.size())
-            throw InputError("--camera", "", "'gltf:" + which + "': the scene has " +
-                                                 std::to_string(s.cameras.size()) + " camera(s)");
+            throw InputError("--camera", "",
+                             "'gltf:" + which + "': the scene has " +
+                                 std::to_string(s.cameras.size()) + " camera(s)");
         return s.cameras[index];
     }
     std::string names;
@@ -43,8 +45,8 @@ scene::CameraDesc gltfCamera(const scene::Scene& s, const std::string& which) {
         if (c.name == which) return c;
         names += (names.empty() ? "'" : ", '") + c.name + "'";
     }
-    throw InputError("--camera", "", "'gltf:" + which + "': no camera of that name (cameras: " +
-                                         names + ")");
+    throw InputError("--camera", "",
+                     "'gltf:" + which + "': no camera of that name (cameras: " + names + ")");
 }
 
 }  // namespace
@@ -75,8 +77,8 @@ std::array<glm::vec2, scene::kMaxEyes> parseGaze(const std::string& text) {
         char* end = nullptr;
         float f = std::strtof(item.c_str(), &end);
         if (item.empty() || *end != '\0' || !(f >= 0.0f && f <= 1.0f))
-            throw InputError("--gaze", "", "expected numbers in [0,1] as x,y or xl,yl,xr,yr, got '" +
-                                               text + "'");
+            throw InputError("--gaze", "",
+                             "expected numbers in [0,1] as x,y or xl,yl,xr,yr, got '" + text + "'");
         v.push_back(f);
     }
     if (!text.empty() && text.back() == ',') v.clear();  // a trailing comma is a typo, not a list
@@ -86,26 +88,26 @@ std::array<glm::vec2, scene::kMaxEyes> parseGaze(const std::string& text) {
 }
 
 RunScene::RunScene(const SceneOptions& o, const graph::GraphDesc& desc) {
-    if (o.stereo && o.mono) throw InputError("--stereo", "", "--stereo and --mono exclude each other");
-    std::string spec = !o.scene.empty() ? o.scene
-                                        : relativeToGraph(desc.defaults.scene.value_or("none"), desc);
+    if (o.stereo && o.mono)
+        throw InputError("--stereo", "", "--stereo and --mono exclude each other");
+    std::string spec =
+        !o.scene.empty() ? o.scene : relativeToGraph(desc.defaults.scene.value_or("none"), desc);
     mRig.stereo = o.stereo || (!o.mono && desc.defaults.stereo.value_or(false));
     mRig.ipd = o.ipd;
     mRig.jitter = o.jitter;
     if (!o.gaze.empty()) mGaze = parseGaze(o.gaze);
-    std::string camera = !o.camera.empty() ? o.camera
+    std::string camera = !o.camera.empty()      ? o.camera
                          : desc.defaults.camera ? relativeToGraph(*desc.defaults.camera, desc)
                                                 : std::string();
     if (spec == "none") {
-        if (!o.camera.empty())
-            throw InputError("--camera", "", "a camera needs a scene (--scene)");
+        if (!o.camera.empty()) throw InputError("--camera", "", "a camera needs a scene (--scene)");
         return;
     }
     auto t0 = std::chrono::steady_clock::now();
     try {
         mScene = std::make_unique<scene::Scene>(scene::loadScene(spec));
     } catch (const InputError& e) {
-        if (!o.scene.empty()) throw;  // the message names the --scene value already
+        if (!o.scene.empty()) throw InputError("--scene", "", e.what());
         throw InputError(desc.file, "/defaults/scene", e.what());
     }
     mLoadMs = msSince(t0);
@@ -166,9 +168,12 @@ nlohmann::json RunScene::json() const {
         const auto& bvh = mGpu->bvhStats();
         j["upload_ms"] = mUploadMs;  // BVH build + light table + upload
         j["gpu_bytes"] = mGpu->totalBytes();
-        j["bvh"] = {{"nodes", bvh.nodeCount},       {"leaves", bvh.leafCount},
-                    {"max_depth", bvh.maxDepth},     {"sah_cost", bvh.sahCost},
-                    {"build_ms", bvh.buildMs},       {"invalid_triangles", bvh.invalidTriangles},
+        j["bvh"] = {{"nodes", bvh.nodeCount},
+                    {"leaves", bvh.leafCount},
+                    {"max_depth", bvh.maxDepth},
+                    {"sah_cost", bvh.sahCost},
+                    {"build_ms", bvh.buildMs},
+                    {"invalid_triangles", bvh.invalidTriangles},
                     {"emissive_triangles", mGpu->info().emissiveTriangleCount}};
     }
     return j;

@@ -47,7 +47,7 @@ public:
 
     bool hasScene() const { return mScene != nullptr; }
     const std::string& spec() const { return mSpec; }  // "none" without a scene
-    uint32_t features() const;                          // graph::SceneFeature bits (CPU side)
+    uint32_t features() const;                         // graph::SceneFeature bits (CPU side)
     // Uploads geometry, BVH and lights (timed; see json()).
     void upload(gpu::Context& context);
     const scene::SceneGpu* gpu() const { return mGpu.get(); }

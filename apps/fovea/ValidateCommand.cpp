@@ -13,8 +13,9 @@ void addValidateCommand(CLI::App& app, ValidateOptions& o) {
     cmd->add_option("--size", o.graph.size, "render size WIDTHxHEIGHT for size checks");
     cmd->add_option("--set", o.graph.sets, "override a parameter: pass.param=value (repeatable)");
     cmd->add_flag("--no-aliasing", o.graph.noAliasing, "plan without memory aliasing");
-    cmd->add_flag("--dump", o.dump, "print the compiled graph (order, culling, resources, "
-                                     "aliasing, barriers, memory)");
+    cmd->add_flag("--dump", o.dump,
+                  "print the compiled graph (order, culling, resources, "
+                  "aliasing, barriers, memory)");
     cmd->add_flag("--json", o.json, "with --dump: print it as JSON");
     addSceneOptions(*cmd, o.scene);
 }

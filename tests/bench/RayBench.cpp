@@ -60,14 +60,14 @@ public:
         mScene = rtcNewScene(mDevice);
         rtcSetSceneBuildQuality(mScene, RTC_BUILD_QUALITY_HIGH);
         RTCGeometry g = rtcNewGeometry(mDevice, RTC_GEOMETRY_TYPE_TRIANGLE);
-        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-            g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-            mesh.positions.size()));
+        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                              RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                              mesh.positions.size()));
         for (size_t i = 0; i < mesh.positions.size(); ++i)
             for (int c = 0; c < 3; ++c) v[3 * i + c] = mesh.positions[i][c];
-        auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-            g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-            mesh.triangles.size()));
+        auto* idx = static_cast<unsigned*>(
+            rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                    3 * sizeof(unsigned), mesh.triangles.size()));
         for (size_t i = 0; i < mesh.triangles.size(); ++i)
             for (int c = 0; c < 3; ++c) idx[3 * i + c] = mesh.triangles[i][c];
         rtcCommitGeometry(g);
@@ -128,8 +128,9 @@ std::pair<std::vector<glm::vec4>, double> traceEmbree(const EmbreeScene& s, cons
                 out[i] = s.trace(set.rays[i], set.occlusion);
         });
     for (auto& th : pool) th.join();
-    return {out, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                     .count()};
+    return {
+        out,
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()};
 }
 
 std::pair<std::vector<glm::vec4>, double> traceGpu(gpu::Context& ctx, const scene::SceneGpu& s,
@@ -182,11 +183,11 @@ void makeSecondaryRays(const scene::Scene& sc, const RaySet& primary,
         const glm::vec3 dir(primary.rays[i].directionTMax);
         if (glm::dot(n, dir) > 0.0f) n = -n;
         const glm::vec3 p = glm::vec3(primary.rays[i].originTMin) + hits[i].x * dir + eps * n;
-        bounce.rays.push_back({glm::vec4(p, 0.0f),
-                               glm::vec4(cosineDirection(n, unit(rng), unit(rng)), 1e30f)});
+        bounce.rays.push_back(
+            {glm::vec4(p, 0.0f), glm::vec4(cosineDirection(n, unit(rng), unit(rng)), 1e30f)});
         if (emitters.empty()) {
-            shadow.rays.push_back(
-                {glm::vec4(p, 0.0f), glm::vec4(glm::normalize(glm::vec3(0.3f, 1.0f, 0.2f)), 1e30f)});
+            shadow.rays.push_back({glm::vec4(p, 0.0f),
+                                   glm::vec4(glm::normalize(glm::vec3(0.3f, 1.0f, 0.2f)), 1e30f)});
             continue;
         }
         const glm::uvec3 e = sc.mesh.triangles[emitters[rng() % emitters.size()]];
@@ -197,7 +198,8 @@ void makeSecondaryRays(const scene::Scene& sc, const RaySet& primary,
                             b * (sc.mesh.positions[e.z] - sc.mesh.positions[e.x]);
         const float dist = glm::length(q - p);
         if (dist < 1e-6f) continue;  // the point is on the light: nothing to trace
-        shadow.rays.push_back({glm::vec4(p, 0.0f), glm::vec4((q - p) / dist, dist * (1.0f - 1e-4f))});
+        shadow.rays.push_back(
+            {glm::vec4(p, 0.0f), glm::vec4((q - p) / dist, dist * (1.0f - 1e-4f))});
     }
 }
 
@@ -213,13 +215,18 @@ int main(int argc, char** argv) {
     int repeats = 3;
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
-        if (a == "--repeats" && i + 1 < argc) repeats = std::max(1, std::atoi(argv[++i]));
-        else if (a == "--device" && i + 1 < argc) device = argv[++i];
-        else if (a.find('x') != std::string::npos && std::isdigit(unsigned(a[0]))) size = a;
+        if (a == "--repeats" && i + 1 < argc)
+            repeats = std::max(1, std::atoi(argv[++i]));
+        else if (a == "--device" && i + 1 < argc)
+            device = argv[++i];
+        else if (a.find('x') != std::string::npos && std::isdigit(unsigned(a[0])))
+            size = a;
         else if (a.rfind("--", 0) == 0) {
-            std::fprintf(stderr, "usage: fovea_raybench [SCENE] [WxH] [--repeats N] [--device D]\n");
+            std::fprintf(stderr,
+                         "usage: fovea_raybench [SCENE] [WxH] [--repeats N] [--device D]\n");
             return 2;
-        } else sceneSpec = a;
+        } else
+            sceneSpec = a;
     }
     try {
         unsigned width = 0, height = 0;

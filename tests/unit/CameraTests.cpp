@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 
 #include "core/scene/Camera.h"
 #include "core/scene/CameraPath.h"
@@ -176,7 +177,9 @@ TEST(CameraPath, CutHoldsUntilTheCutFrame) {
 TEST(CameraPath, GazeFromKeys) {
     json j = {{"version", 1},
               {"keyframes",
-               {{{"frame", 0}, {"position", {0, 0, 5}}, {"target", {0, 0, 0}},
+               {{{"frame", 0},
+                 {"position", {0, 0, 5}},
+                 {"target", {0, 0, 0}},
                  {"gaze", {{0.2, 0.5}, {0.4, 0.5}}}},
                 {{"frame", 2}, {"position", {0, 0, 6}}, {"gaze", {{0.6, 0.5}}}}}}};
     CameraPath path = CameraPath::fromJson(j, "cam.json");
@@ -213,4 +216,20 @@ TEST(CameraPath, ErrorsNameFileAndPointer) {
     msg = pathError({{"version", 1}, {"keyframes", {gaze}}});
     EXPECT_NE(msg.find("/keyframes/0/gaze/0/0"), std::string::npos) << msg;
     EXPECT_THROW(CameraPath::load("/nonexistent/cam.json"), InputError);
+}
+
+TEST(CameraPath, ShippedPathsLoad) {
+    const std::filesystem::path dir =
+        std::filesystem::path(FOVEA_TEST_DIR).parent_path() / "graphs" / "cameras";
+    size_t count = 0;
+    for (const auto& e : std::filesystem::directory_iterator(dir)) {
+        if (e.path().extension() != ".json") continue;
+        CameraPath path = CameraPath::load(e.path());
+        EXPECT_GE(path.keys().size(), 1u) << e.path();
+        ++count;
+    }
+    EXPECT_GE(count, 1u);
+    // The Cornell dolly has its cut at frame 8: the camera jumps there and nowhere else.
+    CameraPath dolly = CameraPath::load(dir / "cornell_dolly.json");
+    for (uint64_t f = 0; f < 16; ++f) EXPECT_EQ(dolly.at(f).cut, f == 8) << "frame " << f;
 }
