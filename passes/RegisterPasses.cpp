@@ -4,7 +4,10 @@
 #include "passes/Accumulate/AccumulatePass.h"
 #include "passes/Blit/BlitPass.h"
 #include "passes/Combine/CombinePass.h"
+#include "passes/GBuffer/GBufferPass.h"
 #include "passes/ImageSource/ImageSourcePass.h"
+#include "passes/PathTrace/PathTracePass.h"
+#include "passes/SampleList/SampleListPass.h"
 #include "passes/Tonemap/TonemapPass.h"
 
 namespace fovea {
@@ -29,6 +32,17 @@ void registerBuiltinPasses() {
         "Combine", "Weighted sum of two images (b optional, may be delayed): blends, differences."));
     r.add(info<passes::BlitPass>(
         "Blit", "Resample to a scaled size / other format; optional every-N-th-frame bypass."));
+    r.add(info<passes::PathTracePass>(
+        "PathTrace",
+        "1 spp path tracing (P2 §3.1): primary hit, NEE, BRDF bounce(s) with NEE; MIS."));
+    r.add(info<passes::GBufferPass>(
+        "GBuffer",
+        "Primary visibility by BVH ray casting, full grid or a sample layout, both eyes in one "
+        "dispatch: visibility, position, normal, depth, albedo, motion (seed 000 §3.1)."));
+    r.add(info<passes::SampleListPass>(
+        "SampleList",
+        "Sample layout from a pattern (all, checkerboard, every n-th, seeded random fraction) with "
+        "a fixed spp per pixel: a stand-in for seed 000's coordinates buffer (§3.2)."));
 }
 
 }  // namespace fovea

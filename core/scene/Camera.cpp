@@ -68,4 +68,21 @@ FrameCamera makeFrameCamera(const CameraDesc& camera, uint32_t width, uint32_t h
     return out;
 }
 
+void primaryRay(const FrameCamera& camera, glm::vec2 pixel, glm::vec3& origin, glm::vec3& dir) {
+    // cameraEyeOf + cameraRay of camera.glsl; CameraGpu.cpp packs the same quantities.
+    const uint32_t eyeWidth = std::max(camera.eyeWidth, 1u);
+    const uint32_t column = pixel.x > 0.0f ? uint32_t(pixel.x) : 0u;
+    const uint32_t e = std::min(column / eyeWidth, std::max(camera.eyeCount, 1u) - 1u);
+    const EyeView& eye = camera.eyes[e];
+    const glm::mat4 cameraToWorld = glm::inverse(eye.view);
+    const glm::vec2 local = pixel - glm::vec2(float(eye.offsetX), 0.0f);
+    const glm::vec2 size(float(eyeWidth), float(std::max(camera.height, 1u)));
+    const glm::vec2 ndc(2.0f * local.x / size.x - 1.0f, 1.0f - 2.0f * local.y / size.y);
+    const float t = std::tan(0.5f * camera.yfov);
+    const float aspect = size.x / size.y;
+    const glm::vec3 d(ndc.x * t * aspect, ndc.y * t, -1.0f);
+    origin = eye.position;
+    dir = glm::normalize(glm::mat3(cameraToWorld) * d);  // |d| >= 1 (z = -1)
+}
+
 }  // namespace fovea::scene

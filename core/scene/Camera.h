@@ -47,4 +47,9 @@ FrameCamera makeFrameCamera(const CameraDesc& camera, uint32_t width, uint32_t h
                             const CameraRigOptions& rig, uint64_t frameIndex,
                             const FrameCamera* previous, const glm::vec2 gaze[kMaxEyes]);
 
+// The primary ray through `pixel` (coordinates of the whole side-by-side image, e.g.
+// (x, y) + 0.5 + jitter), built exactly like cameraRay in shaders/common/camera.glsl for the eye
+// that covers column floor(pixel.x): CPU references of the ray-cast passes use it.
+void primaryRay(const FrameCamera& camera, glm::vec2 pixel, glm::vec3& origin, glm::vec3& dir);
+
 }  // namespace fovea::scene

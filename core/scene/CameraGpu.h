@@ -12,7 +12,7 @@ namespace fovea::scene::layout {
 
 struct CameraEye {
     glm::mat4 viewProj;       // jitter-free; the jitter moves pixel positions (camera.glsl)
-    glm::mat4 prevViewProj;  // previous frame's viewProj (motion vectors)
+    glm::mat4 prevViewProj;   // previous frame's viewProj (motion vectors)
     glm::mat4 cameraToWorld;  // inverse view: columns are right, up, back, position
     glm::vec4 position;       // xyz eye position; w = first column of this eye (offsetX)
     glm::vec4 gaze;           // xy gaze in [0,1]^2 of the eye's image; zw unused
@@ -20,9 +20,9 @@ struct CameraEye {
 
 struct CameraInfo {
     CameraEye eyes[kMaxEyes];
-    glm::uvec4 size;    // x eye width, y height, z eye count, w cut (0/1)
-    glm::vec4 jitter;   // xy sub-pixel jitter in pixels; z tan(yfov/2); w eye aspect (w/h)
-    glm::uvec4 frame;   // x frame index (low 32 bits), y frames since reset (low 32), zw unused
+    glm::uvec4 size;   // x eye width, y height, z eye count, w cut (0/1)
+    glm::vec4 jitter;  // xy sub-pixel jitter in pixels; z tan(yfov/2); w eye aspect (w/h)
+    glm::uvec4 frame;  // x frame index (low 32 bits), y frames since reset (low 32), zw unused
 };
 
 static_assert(sizeof(CameraEye) == 224);

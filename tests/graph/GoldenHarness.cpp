@@ -15,6 +15,9 @@
 #include "core/graph/GraphDesc.h"
 #include "core/graph/PassRegistry.h"
 #include "core/graph/RenderGraph.h"
+#include "core/scene/Camera.h"
+#include "core/scene/SceneGpu.h"
+#include "core/scene/SceneLoader.h"
 #include "core/vk/Context.h"
 #include "core/vk/Formats.h"
 #include "core/vk/Resources.h"
@@ -153,8 +156,14 @@ std::optional<GoldenTolerance> sidecarTolerance(const json& sidecar) {
 
 // The sidecar fields that must match the test for the golden to apply.
 json identity(const GoldenSpec& spec, const RenderedOutput& out, uint64_t seed) {
-    return {{"graph", spec.graph.generic_string()}, {"output", out.output},  {"format", out.format},
-            {"size", {spec.width, spec.height}},    {"frames", spec.frames}, {"seed", seed}};
+    json id = {{"graph", spec.graph.generic_string()}, {"output", out.output},
+               {"format", out.format},                 {"size", {spec.width, spec.height}},
+               {"frames", spec.frames},                {"seed", seed}};
+    if (!spec.scene.empty()) {
+        id["scene"] = spec.scene;
+        id["stereo"] = spec.stereo;
+    }
+    return id;
 }
 
 // Names of identity fields where `sidecar` differs from `expected`, e.g. "size [64,64] (test
@@ -352,8 +361,7 @@ GoldenOutputResult updateOutput(const GoldenSpec& spec, const RenderedOutput& ou
     image::writeExr(r.golden, out.image);
     // Written in reading order (graph, output, ..., created), not json's sorted order.
     nlohmann::ordered_json sidecar;
-    for (const char* key : {"graph", "output", "format", "size", "frames", "seed"})
-        sidecar[key] = id[key];
+    for (const auto& [key, value] : id.items()) sidecar[key] = value;
     sidecar["device"] = device;
     sidecar["driver"] = driver;
     sidecar["tolerance"] = {{"rmse", r.tolerance.rmse}, {"max_abs", r.tolerance.maxAbs}};
@@ -376,7 +384,24 @@ std::vector<RenderedOutput> renderGraphOutputs(gpu::Context& ctx, const GoldenSp
     graph::CompileOptions options;
     options.width = spec.width;
     options.height = spec.height;
+    std::unique_ptr<scene::Scene> sceneData;
+    std::unique_ptr<scene::SceneGpu> sceneGpu;
+    scene::CameraRigOptions rig;
+    rig.stereo = spec.stereo;
+    if (!spec.scene.empty()) {
+        const bool builtin = spec.scene.rfind("builtin:", 0) == 0;
+        sceneData = std::make_unique<scene::Scene>(
+            scene::loadScene(builtin ? spec.scene : (repositoryRoot() / spec.scene).string()));
+        sceneGpu = std::make_unique<scene::SceneGpu>(ctx, *sceneData);
+        options.sceneFeatures = sceneGpu->features() | (spec.stereo ? graph::kSceneStereo : 0u);
+    }
+    const scene::CameraDesc camera = !sceneData                   ? scene::CameraDesc{}
+                                     : sceneData->cameras.empty() ? sceneData->defaultCamera()
+                                                                  : sceneData->cameras.front();
     graph::RenderGraph graph(ctx, graph::passRegistry());
+    graph.setScene(sceneGpu.get());
+    graph.setCamera(
+        scene::makeFrameCamera(camera, spec.width, spec.height, rig, 0, nullptr, nullptr));
     graph.build(desc, options);
     graph.setSeed(seedUsed);
     for (uint32_t f = 0; f < spec.frames; ++f) graph.runFrame();

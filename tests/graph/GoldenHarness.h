@@ -70,6 +70,11 @@ struct GoldenSpec {
     uint32_t width = 32, height = 32;
     uint32_t frames = 3;
     std::optional<uint64_t> seed;  // unset: the graph's default seed, else 0 (as `fovea run`)
+    // A scene ("builtin:cornell" or a glTF path relative to the repository root) seen through
+    // its first camera (else the default framing camera), optionally as a side-by-side stereo
+    // pair. Empty: no scene. Both are part of the golden's identity when a scene is set.
+    std::string scene;
+    bool stereo = false;
     // Tolerance for newly created goldens (an existing sidecar's tolerance is kept on update);
     // unset: defaultTolerance() of the output's format.
     std::optional<GoldenTolerance> tolerance;

@@ -53,6 +53,45 @@ TEST_F(GoldenTest, HistoryDifference) {
         ctx(), golden("history_difference", "graphs/tests/history_difference.json")));
 }
 
+TEST_F(GoldenTest, CornellGBuffer) {
+    // Ray-cast primary visibility of the Cornell box (seed 000 §3.1): surfaces, normals, albedo.
+    auto spec = golden("cornell_gbuffer", "graphs/tests/golden_gbuffer.json");
+    spec.scene = "builtin:cornell";
+    spec.width = spec.height = 128;
+    spec.frames = 1;
+    EXPECT_TRUE(fovea::test::goldenMatches(ctx(), spec));
+}
+
+TEST_F(GoldenTest, CornellGBufferStereo) {
+    // The same, side by side for two eyes in one dispatch (two 64x64 eye images).
+    auto spec = golden("cornell_gbuffer_stereo", "graphs/tests/golden_gbuffer.json");
+    spec.scene = "builtin:cornell";
+    spec.stereo = true;
+    spec.width = 128;
+    spec.height = 64;
+    spec.frames = 1;
+    EXPECT_TRUE(fovea::test::goldenMatches(ctx(), spec));
+}
+
+TEST_F(GoldenTest, CornellPathTrace1spp) {
+    // The P2 §3.1 1 spp configuration (graphs/pathtrace.json): bit-reproducible on one driver.
+    auto spec = golden("cornell_pathtrace", "graphs/pathtrace.json");
+    spec.scene = "builtin:cornell";
+    spec.width = spec.height = 128;
+    spec.frames = 1;
+    EXPECT_TRUE(fovea::test::goldenMatches(ctx(), spec));
+}
+
+TEST_F(GoldenTest, CornellPathTraceStereo) {
+    auto spec = golden("cornell_pathtrace_stereo", "graphs/pathtrace.json");
+    spec.scene = "builtin:cornell";
+    spec.stereo = true;
+    spec.width = 128;
+    spec.height = 64;
+    spec.frames = 1;
+    EXPECT_TRUE(fovea::test::goldenMatches(ctx(), spec));
+}
+
 TEST_F(GoldenTest, Chain20) {
     // 18 chained Combines of animated noise (aliased transients), tonemapped to rgba8.
     EXPECT_TRUE(fovea::test::goldenMatches(ctx(), golden("chain20", "graphs/tests/chain20.json")));

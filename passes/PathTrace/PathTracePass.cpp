@@ -1,0 +1,161 @@
+#include "passes/PathTrace/PathTracePass.h"
+
+#include "core/scene/SampleLayout.h"
+#include "core/scene/SceneGpu.h"
+#include "core/util/Error.h"
+#include "core/vk/ComputePipeline.h"
+#include "core/vk/Resources.h"
+
+namespace fovea::passes {
+
+namespace {
+const std::vector<std::string> kBrdfs = {"lambert", "ggx"};
+constexpr int kMaxSpp = 1024;
+constexpr int kMaxBounceLimit = 16;
+
+// "emissive" or "no-emissive" from a SCENE_HAS_* define.
+std::string feature(const std::vector<std::pair<std::string, std::string>>& defines,
+                    const std::string& define, const std::string& name) {
+    for (const auto& [key, value] : defines)
+        if (key == define) return value == "1" ? name : "no-" + name;
+    return name;  // not specialized: compiled in
+}
+}  // namespace
+
+PathTracePass::PathTracePass() = default;
+PathTracePass::~PathTracePass() = default;
+
+void PathTracePass::params(graph::ParamVisitor& v) {
+    v.add("spp", mSpp, 1,
+          "samples (paths) per pixel without a sample layout; a layout's per-pixel count "
+          "overrides it (seed 000 Table 1 uses 4/3/2 per layer)",
+          {1, kMaxSpp});
+    v.add("maxBounces", mMaxBounces, 1,
+          "indirect rays per path, each followed by next-event estimation (P2 §3.1: 1); 0 = "
+          "direct light only",
+          {0, kMaxBounceLimit});
+    v.add("brdf", mBrdf, "lambert",
+          "lambert: every surface diffuse with its base colour (seed 000 §4.1); ggx: glTF "
+          "metallic-roughness (GGX/Smith specular + Lambert diffuse weighted by 1 - metallic)",
+          kBrdfs);
+    v.add("clampIndirect", mClampIndirect, 0.0f,
+          "firefly clamp: largest channel of one indirect contribution (biased); 0 = off",
+          {0.0, 1e30});
+    v.add("countRays", mCountRays, false,
+          "benchmarks: count every traced ray by kind (atomic counters; rayCounts())");
+}
+
+void PathTracePass::reflect(graph::Reflection& r) const {
+    r.input("visibility", vk::Format::eR32G32B32A32Uint)
+        .optional()
+        .doc(
+            "GBuffer visibility (triangle + 1, barycentrics, flags): primary hits; open = own "
+            "jittered primary rays per sample");
+    r.input("albedo").optional().doc(
+        "first-hit base colour for demodulation; open = the pass's own first hit");
+    r.input(scene::kSampleLayoutField)
+        .buffer(scene::kSampleLayoutHeaderBytes)
+        .optional()
+        .doc("sample layout (CONTRACT): only listed pixels are traced, with their count");
+    r.output("radiance", vk::Format::eR32G32B32A32Sfloat)
+        .doc("mean radiance of the pixel's samples; a = samples traced (0 = untraced)");
+    r.output("demodulated", vk::Format::eR32G32B32A32Sfloat)
+        .doc(
+            "(radiance - primary emission) / albedo' (albedo' = albedo > 1e-3 ? albedo : 1); "
+            "a = samples");
+    r.output("hit_distance", vk::Format::eR32Sfloat)
+        .doc("mean distance of the first indirect ray's hit over the samples that hit; 0 = none");
+    r.output("direct", vk::Format::eR16G16B16A16Sfloat)
+        .doc("primary emission + light after one reflection; a = samples");
+    r.output("indirect", vk::Format::eR16G16B16A16Sfloat)
+        .doc("light after two or more reflections; a = samples");
+}
+
+void PathTracePass::compile(graph::CompileContext& ctx) {
+    const scene::SceneGpu* scene = ctx.scene();
+    if (!scene)  // sceneNeeds() culls the pass without a scene; never reached in a graph
+        throw RuntimeError("pass '" + name() + "' (PathTrace): no scene");
+    auto defines = scene->defines();
+    bool ggx = mBrdf == "ggx";
+    defines.emplace_back("BRDF_GGX", ggx ? "1" : "0");
+    defines.emplace_back("PATHTRACE_COUNT_RAYS", mCountRays ? "1" : "0");
+    mUseVisibility = ctx.connected("visibility");
+    mUseAlbedo = ctx.connected("albedo");
+    mUseLayout = ctx.connected(scene::kSampleLayoutField);
+    mVariant = std::string(ggx ? "ggx" : "lambert") + "," +
+               feature(defines, "SCENE_HAS_EMISSIVE", "emissive") + "," +
+               feature(defines, "SCENE_HAS_PUNCTUAL", "punctual") + "," +
+               feature(defines, "SCENE_HAS_TEXTURES", "textures") +
+               ",bounces=" + std::to_string(mMaxBounces) +
+               ",primary=" + (mUseVisibility ? "gbuffer" : "own") +
+               (mUseLayout ? ",layout" : ",spp=" + std::to_string(mSpp)) +
+               (mCountRays ? ",count-rays" : "");
+    mTrace = ctx.createPipeline("pathtrace/pathtrace.comp", defines,
+                                {scene::kSampleLayoutBinding, "pathtrace_rays"});
+    mRayCounter.reset();
+    mCounterCleared = false;
+    if (mCountRays)
+        mRayCounter = std::make_unique<gpu::Buffer>(ctx.gpu(), 16,
+                                                    vk::BufferUsageFlagBits::eStorageBuffer |
+                                                        vk::BufferUsageFlagBits::eTransferSrc |
+                                                        vk::BufferUsageFlagBits::eTransferDst,
+                                                    false, name() + ".rays");
+    mClear = ctx.createPipeline("pathtrace/clear.comp");
+    mLayoutInput = std::make_unique<scene::SampleLayoutInput>(ctx.gpu());
+}
+
+void PathTracePass::execute(graph::ExecuteContext& ctx) {
+    const auto& out = ctx.image("radiance");
+    glm::ivec2 size(int(out.width()), int(out.height()));
+    if (mUseLayout) {
+        // Untraced pixels must read as invalid: clear everything, then trace the list. The
+        // barrier orders the two dispatches of this pass (the graph orders passes).
+        ctx.bindFields(*mClear);
+        mClear->set("size", size);
+        mClear->dispatch(ctx.cmd(), out.width(), out.height());
+        vk::MemoryBarrier2 barrier{.srcStageMask = vk::PipelineStageFlagBits2::eComputeShader,
+                                   .srcAccessMask = vk::AccessFlagBits2::eShaderStorageWrite,
+                                   .dstStageMask = vk::PipelineStageFlagBits2::eComputeShader,
+                                   .dstAccessMask = vk::AccessFlagBits2::eShaderStorageWrite |
+                                                    vk::AccessFlagBits2::eShaderStorageRead};
+        ctx.cmd().pipelineBarrier2(
+            vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &barrier});
+    }
+    if (mRayCounter && !mCounterCleared) {
+        // Counts accumulate on the GPU from the first frame after compile (32 bits each: about
+        // 4000 frames of 640x360 at 1 spp before they wrap).
+        mCounterCleared = true;
+        ctx.cmd().fillBuffer(mRayCounter->buffer(), 0, VK_WHOLE_SIZE, 0u);
+        vk::MemoryBarrier2 fill{.srcStageMask = vk::PipelineStageFlagBits2::eTransfer,
+                                .srcAccessMask = vk::AccessFlagBits2::eTransferWrite,
+                                .dstStageMask = vk::PipelineStageFlagBits2::eComputeShader,
+                                .dstAccessMask = vk::AccessFlagBits2::eShaderStorageRead |
+                                                 vk::AccessFlagBits2::eShaderStorageWrite};
+        ctx.cmd().pipelineBarrier2(
+            vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &fill});
+    }
+    if (mRayCounter) mTrace->bind("pathtrace_rays", *mRayCounter);
+    ctx.bindFields(*mTrace);
+    mLayoutInput->bind(*mTrace, mUseLayout ? &ctx.buffer(scene::kSampleLayoutField) : nullptr);
+    uint64_t seed = ctx.frame().seed;
+    mTrace->set("size", size)
+        .set("seedLo", uint32_t(seed & 0xFFFFFFFFu))
+        .set("seedHi", uint32_t(seed >> 32))
+        .set("spp", mSpp)
+        .set("maxBounces", mMaxBounces)
+        .set("useVisibility", int(mUseVisibility))
+        .set("useAlbedo", int(mUseAlbedo))
+        .set("useLayout", int(mUseLayout))
+        .set("clampIndirect", mClampIndirect);
+    mTrace->dispatch(ctx.cmd(), out.width(), out.height());
+}
+
+std::array<uint64_t, 4> PathTracePass::rayCounts(const gpu::Context& context) const {
+    std::array<uint64_t, 4> out{};
+    if (!mRayCounter || !mCounterCleared) return out;
+    auto counts = mRayCounter->downloadAs<uint32_t>(context);
+    for (size_t k = 0; k < out.size() && k < counts.size(); ++k) out[k] = counts[k];
+    return out;
+}
+
+}  // namespace fovea::passes

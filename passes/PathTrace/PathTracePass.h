@@ -1,0 +1,54 @@
+// PathTrace: the 1 spp ray configuration of seed 003 (P2 §3.1, P5 §3.1) used by seed 000 (§3.3):
+// primary hit (GBuffer `visibility` or own jittered camera rays), next-event estimation, one
+// cosine/BRDF-sampled indirect bounce (`maxBounces`, default 1) with next-event estimation at its
+// hit. Outputs radiance (a = samples), albedo-demodulated radiance, the first indirect hit
+// distance and the direct/indirect split. Optional sample layout (seed 000 §3.2 coordinates
+// buffer). docs/passes/PathTrace.md.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "core/graph/Pass.h"
+
+namespace fovea::scene {
+class SampleLayoutInput;
+}
+
+namespace fovea::passes {
+
+class PathTracePass : public graph::Pass {
+public:
+    PathTracePass();
+    ~PathTracePass() override;
+
+    void params(graph::ParamVisitor& v) override;
+    void reflect(graph::Reflection& r) const override;
+    uint32_t sceneNeeds() const override { return graph::kSceneGeometry; }
+    void compile(graph::CompileContext& ctx) override;
+    void execute(graph::ExecuteContext& ctx) override;
+    // Random per frame and seed: never cacheable (the default).
+    std::string variant() const override { return mVariant; }
+
+    // With countRays on: rays traced since the last compile (build), by kind (primary, shadow from
+    // the primary hit, indirect, shadow from indirect hits). Waits for the GPU. Zeros otherwise.
+    std::array<uint64_t, 4> rayCounts(const gpu::Context& context) const;
+
+private:
+    int mSpp = 1;
+    int mMaxBounces = 1;
+    std::string mBrdf = "lambert";
+    float mClampIndirect = 0.0f;
+    bool mCountRays = false;
+
+    std::string mVariant;
+    bool mUseVisibility = false, mUseAlbedo = false, mUseLayout = false;
+    std::unique_ptr<gpu::ComputePipeline> mTrace;
+    std::unique_ptr<gpu::ComputePipeline> mClear;
+    std::unique_ptr<scene::SampleLayoutInput> mLayoutInput;
+    std::unique_ptr<gpu::Buffer> mRayCounter;  // countRays: 4 x uint32, summed on the GPU
+    bool mCounterCleared = false;              // zeroed by the first execute after compile
+};
+
+}  // namespace fovea::passes

@@ -1,0 +1,107 @@
+#version 460
+// GBuffer: primary visibility by ray casting in compute over the scene BVH - seed 000 §3.1 (the
+// pre-pass: one ray per pixel for both eyes, shading data of the first hit stored in G-buffers)
+// and §4.1 (one program for both screens: the right eye is the same dispatch with the pixel
+// offset by the left screen's width; camera.glsl's cameraEyeOf/cameraRay do that mapping).
+// Works over the full grid or over a sample layout (seed 000 §3.2's coordinates buffer, whose
+// entries §3.3/§4.1 map to launch coordinates; ours already hold side-by-side coordinates); with
+// a layout the pass first runs this shader with `clearPass` = 1 so unlisted pixels read invalid.
+// Output encodings: /tmp/fovea/CONTRACT.md, docs/passes/GBuffer.md.
+#extension GL_GOOGLE_include_directive : require
+
+#include "../common/bvh.glsl"
+#include "../common/camera.glsl"
+#include "../common/sample_layout.glsl"
+#include "../common/scene_sample.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(rgba32ui) uniform writeonly uimage2D visibility;
+layout(rgba32f) uniform writeonly image2D position;
+layout(rgba16f) uniform writeonly image2D normal;
+layout(r32f) uniform writeonly image2D depth;
+layout(rgba16f) uniform writeonly image2D albedo;
+layout(rg16f) uniform writeonly image2D motion;
+layout(r32ui) uniform writeonly uimage2D material;
+layout(rg16f) uniform writeonly image2D roughness_metallic;
+layout(rgba16f) uniform writeonly image2D emission;
+
+layout(push_constant) uniform Params {
+    uvec2 size;      // the outputs' size (the whole side-by-side image)
+    uint useLayout;  // 1: trace the entries of sample_layout; 0: every pixel
+    uint clearPass;  // 1: only write the invalid marker to every pixel (before a layout trace)
+    uint useJitter;  // 1: offset rays by the camera's sub-pixel jitter
+} pc;
+
+const uint kFlagTraced = 1u;
+const uint kFlagHit = 2u;
+
+// The "nothing here" value of every output: untraced pixels (visibility.w bit0 clear) and, except
+// for visibility's flags, misses.
+void writeEmpty(ivec2 p, uvec4 vis) {
+    imageStore(visibility, p, vis);
+    imageStore(position, p, vec4(0.0));
+    imageStore(normal, p, vec4(0.0));
+    imageStore(depth, p, vec4(0.0));
+    imageStore(albedo, p, vec4(0.0));
+    imageStore(motion, p, vec4(0.0));
+    imageStore(material, p, uvec4(0u));
+    imageStore(roughness_metallic, p, vec4(0.0));
+    imageStore(emission, p, vec4(0.0));
+}
+
+// fp16 outputs: clamp to the half range so a huge (but finite) value never becomes Inf.
+vec4 toHalf(vec4 v) { return clamp(v, vec4(-65504.0), vec4(65504.0)); }
+
+void main() {
+    uvec2 thread = gl_GlobalInvocationID.xy;
+    if (pc.clearPass != 0u) {
+        if (all(lessThan(thread, pc.size))) writeEmpty(ivec2(thread), uvec4(0u));
+        return;
+    }
+    uvec2 pixel;
+    uint samples;
+    if (!sampleLayoutWorkItem(pc.useLayout != 0u, thread, pc.size, 1u, pixel, samples)) return;
+    ivec2 p = ivec2(pixel);
+
+    uint eye = cameraEyeOf(pixel.x);
+    // The ray's image position; the same point is "now" for the motion vector below, so a static
+    // camera gives exactly zero motion with or without jitter.
+    vec2 now = vec2(pixel) + 0.5 + (pc.useJitter != 0u ? camera_info.jitter.xy : vec2(0.0));
+    vec3 origin, dir;
+    cameraRay(eye, now, origin, dir);
+
+    uint flags = kFlagTraced | (eye << 8);
+    BvhHit hit;
+    if (!bvhClosestHit(origin, dir, 0.0, kSceneInfiniteDistance, hit)) {
+        writeEmpty(p, uvec4(0u, 0u, 0u, flags));
+        return;
+    }
+
+    SceneSurface s = sceneSurface(hit.triangle, hit.barycentrics);
+    bool frontFacing = dot(s.geometricNormal, dir) < 0.0;
+    // Shading normal flipped with the face the ray sees (not per pixel against the view vector:
+    // interpolated normals may legitimately tilt away at silhouettes).
+    vec3 n = frontFacing ? s.normal : -s.normal;
+    SceneMaterialSample m = sceneMaterial(s.material, s.uv);
+
+    // A camera that did not move gives exactly zero (not a rounding residue of the two camera
+    // representations), so temporal passes can rely on "no motion" for a still view.
+    vec2 previous;
+    vec2 mv = vec2(0.0);
+    if (camera_info.eyes[eye].prevViewProj != camera_info.eyes[eye].viewProj &&
+        cameraPreviousPixel(eye, s.position, previous))
+        mv = previous - now;
+
+    imageStore(visibility, p,
+               uvec4(hit.triangle + 1u, floatBitsToUint(hit.barycentrics.x),
+                     floatBitsToUint(hit.barycentrics.y), flags | kFlagHit));
+    imageStore(position, p, vec4(s.position, 1.0));
+    imageStore(normal, p, vec4(n, 1.0));
+    imageStore(depth, p, vec4(cameraViewDepth(eye, s.position)));
+    imageStore(albedo, p, toHalf(vec4(m.baseColor, 1.0)));
+    imageStore(motion, p, toHalf(vec4(mv, 0.0, 0.0)));
+    imageStore(material, p, uvec4(s.material + 1u));
+    imageStore(roughness_metallic, p, vec4(m.roughness, m.metallic, 0.0, 0.0));
+    imageStore(emission, p, toHalf(vec4(sceneEmission(s.material, s.uv, frontFacing), 1.0)));
+}

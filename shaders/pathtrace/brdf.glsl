@@ -1,0 +1,167 @@
+// BRDFs of the PathTrace pass (docs/passes/PathTrace.md "BRDF").
+//  - Lambert (BRDF_GGX = 0, the default): f = baseColor / pi, cosine-weighted sampling. Peres et
+//    al. shade everything with it (seed 000 §3.3 and §4.1: "Lambertian material").
+//  - glTF metallic-roughness (BRDF_GGX = 1): f = (1 - F) (1 - metallic) baseColor / pi
+//    + D G2 F / (4 |n.wo| |n.wi|), GGX D, height-correlated Smith G2, Schlick F with
+//    F0 = mix(0.04, baseColor, metallic), alpha = roughness^2. One lobe is picked per sample
+//    (probability from the Fresnel/diffuse luminance at the view angle), the specular one by
+//    sampling GGX visible normals (Heitz 2018); the weight f cos / pdf always uses the pdf of
+//    the whole mixture (one-sample MIS), so the choice affects variance only, never the mean.
+// All directions are world-space unit vectors; `n` is the shading normal on the side of wo.
+#ifndef FOVEA_PATHTRACE_BRDF_GLSL
+#define FOVEA_PATHTRACE_BRDF_GLSL
+
+#ifndef BRDF_GGX
+#define BRDF_GGX 0
+#endif
+
+const float kPi = 3.14159265358979;
+const float kMinAlpha = 2e-3;  // below this D(h) exceeds 1e5: a float-safe near-mirror
+const float kMinCos = 1e-4;    // floor of n.wo so the specular terms never divide by 0
+
+struct BrdfInput {
+    vec3 baseColor;
+    float metallic;
+    float roughness;
+};
+
+// Orthonormal basis around unit n (Duff et al. 2017, "Building an Orthonormal Basis,
+// Revisited"): branch-free; 1 / (sign + n.z) cannot divide by 0 because |sign + n.z| >= 1.
+void brdfBasis(vec3 n, out vec3 t, out vec3 b) {
+    float s = n.z >= 0.0 ? 1.0 : -1.0;
+    float a = -1.0 / (s + n.z);
+    float c = n.x * n.y * a;
+    t = vec3(1.0 + s * n.x * n.x * a, s * c, -s * n.x);
+    b = vec3(c, s + n.y * n.y * a, -n.y);
+}
+
+// Cosine-weighted direction around n: pdf = cos / pi.
+vec3 brdfSampleCosine(vec3 n, vec2 u) {
+    float r = sqrt(u.x);  // u.x >= 0
+    float phi = 2.0 * kPi * u.y;
+    vec3 t, b;
+    brdfBasis(n, t, b);
+    float z = sqrt(max(0.0, 1.0 - u.x));
+    return normalize(t * (r * cos(phi)) + b * (r * sin(phi)) + n * z);  // length ~1, never 0
+}
+
+#if BRDF_GGX
+float brdfLuminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
+
+vec3 brdfF0(BrdfInput m) { return mix(vec3(0.04), m.baseColor, m.metallic); }
+vec3 brdfSchlick(vec3 f0, float cosTheta) {
+    float k = 1.0 - clamp(cosTheta, 0.0, 1.0);
+    return f0 + (1.0 - f0) * (k * k * k * k * k);
+}
+float brdfAlpha(BrdfInput m) { return max(m.roughness * m.roughness, kMinAlpha); }
+
+// GGX normal distribution; the denominator is >= pi * a2 * min(1, a2)^2 > 0 since a >= kMinAlpha.
+float brdfD(float nh, float a) {
+    float a2 = a * a;
+    float d = nh * nh * (a2 - 1.0) + 1.0;
+    return a2 / (kPi * d * d);
+}
+// Smith Lambda for GGX; c = cos to the normal, > 0 (callers clamp).
+float brdfLambda(float c, float a) {
+    float c2 = c * c;
+    float t2 = max(0.0, 1.0 - c2) / c2;  // c >= kMinCos
+    return 0.5 * (sqrt(1.0 + a * a * t2) - 1.0);
+}
+
+// Probability of sampling the specular lobe. Both lobes keep >= 10% unless one is black.
+float brdfSpecularProbability(BrdfInput m, float nv) {
+    float ws = brdfLuminance(brdfSchlick(brdfF0(m), nv));
+    float wd = brdfLuminance(m.baseColor) * (1.0 - m.metallic);
+    if (!(ws + wd > 0.0)) return 0.5;
+    float p = ws / (ws + wd);  // ws + wd > 0 here
+    return (ws > 0.0 && wd > 0.0) ? clamp(p, 0.1, 0.9) : p;
+}
+#endif
+
+// f(wo, wi) (without the cosine); zero below the surface.
+vec3 brdfEval(BrdfInput m, vec3 n, vec3 wo, vec3 wi) {
+    float nl = dot(n, wi);
+    if (nl <= 0.0) return vec3(0.0);
+#if BRDF_GGX
+    float nv = max(dot(n, wo), kMinCos);
+    vec3 h = wo + wi;
+    float hl = length(h);
+    if (!(hl > 0.0)) return vec3(0.0);  // wi = -wo: no half vector (cannot be above n and wo)
+    h /= hl;
+    float a = brdfAlpha(m);
+    vec3 f = brdfSchlick(brdfF0(m), dot(h, wi));
+    float g2 = 1.0 / (1.0 + brdfLambda(nv, a) + brdfLambda(max(nl, kMinCos), a));
+    vec3 spec = f * (brdfD(max(dot(n, h), 0.0), a) * g2 / (4.0 * nv * max(nl, kMinCos)));
+    vec3 diffuse = (1.0 - f) * (1.0 - m.metallic) * m.baseColor / kPi;
+    return diffuse + spec;
+#else
+    return m.baseColor / kPi;
+#endif
+}
+
+// Solid-angle pdf with which brdfSample produces wi.
+float brdfPdf(BrdfInput m, vec3 n, vec3 wo, vec3 wi) {
+    float nl = dot(n, wi);
+    if (nl <= 0.0) return 0.0;
+#if BRDF_GGX
+    float nv = max(dot(n, wo), kMinCos);
+    vec3 h = wo + wi;
+    float hl = length(h);
+    if (!(hl > 0.0)) return 0.0;
+    h /= hl;
+    float a = brdfAlpha(m);
+    // Visible-normal pdf of h, times the reflection Jacobian 1 / (4 wo.h):
+    // G1(wo) D(h) max(0, wo.h) / nv / (4 wo.h) = G1(wo) D(h) / (4 nv).
+    float g1 = 1.0 / (1.0 + brdfLambda(nv, a));
+    float pSpec = dot(wo, h) > 0.0 ? g1 * brdfD(max(dot(n, h), 0.0), a) / (4.0 * nv) : 0.0;
+    float ps = brdfSpecularProbability(m, nv);
+    return ps * pSpec + (1.0 - ps) * nl / kPi;
+#else
+    return nl / kPi;
+#endif
+}
+
+// Samples wi; returns false when no direction above the surface was produced. u.x picks the
+// lobe (GGX only), u.yz the direction.
+bool brdfSample(BrdfInput m, vec3 n, vec3 wo, vec3 u, out vec3 wi) {
+#if BRDF_GGX
+    float nv = max(dot(n, wo), kMinCos);
+    if (u.x < brdfSpecularProbability(m, nv)) {
+        // Heitz 2018, "Sampling the GGX Distribution of Visible Normals", in the frame of n.
+        vec3 t, b;
+        brdfBasis(n, t, b);
+        float a = brdfAlpha(m);
+        vec3 v = vec3(dot(wo, t), dot(wo, b), max(dot(wo, n), kMinCos));
+        vec3 vh = normalize(vec3(a * v.x, a * v.y, v.z));  // z > 0: never zero length
+        float lensq = vh.x * vh.x + vh.y * vh.y;
+        vec3 t1 = lensq > 0.0 ? vec3(-vh.y, vh.x, 0.0) * inversesqrt(lensq) : vec3(1.0, 0.0, 0.0);
+        vec3 t2 = cross(vh, t1);
+        float r = sqrt(u.y);
+        float phi = 2.0 * kPi * u.z;
+        float p1 = r * cos(phi);
+        float p2 = r * sin(phi);
+        float s = 0.5 * (1.0 + vh.z);
+        p2 = (1.0 - s) * sqrt(max(0.0, 1.0 - p1 * p1)) + s * p2;
+        vec3 nh = p1 * t1 + p2 * t2 + sqrt(max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
+        vec3 hLocal = normalize(vec3(a * nh.x, a * nh.y, max(0.0, nh.z)));  // nh.z ~ 1 >= ...
+        vec3 h = t * hLocal.x + b * hLocal.y + n * hLocal.z;
+        wi = reflect(-wo, h);
+        return dot(n, wi) > 0.0;
+    }
+#endif
+    wi = brdfSampleCosine(n, u.yz);
+    return dot(n, wi) > 0.0;
+}
+
+// f cos / pdf for a direction from brdfSample (0 when the pdf vanishes).
+vec3 brdfWeight(BrdfInput m, vec3 n, vec3 wo, vec3 wi) {
+#if BRDF_GGX
+    float pdf = brdfPdf(m, n, wo, wi);
+    if (!(pdf > 0.0)) return vec3(0.0);
+    return brdfEval(m, n, wo, wi) * dot(n, wi) / pdf;  // pdf > 0 here
+#else
+    return m.baseColor;  // (rho / pi) cos / (cos / pi)
+#endif
+}
+
+#endif

@@ -1,0 +1,280 @@
+#version 460
+// PathTrace: the real-time "1 spp" ray configuration of Koskela et al. (seed 003, P2 §3.1 and P5
+// §3.1) as used by Peres et al. (seed 000 §3.3, §4.1): per sample one primary hit (the GBuffer's
+// `visibility` or an own jittered camera ray), next-event estimation (one shadow ray to a random
+// point on a random light), then `maxBounces` (default 1) BRDF-sampled indirect rays, each
+// followed by next-event estimation at its hit. Emission found by an indirect ray is combined
+// with next-event estimation by multiple importance sampling (power heuristic); at the last
+// vertex no ray follows, so its shadow ray takes full weight (docs/passes/PathTrace.md
+// "Emission and MIS").
+//
+// Random numbers: a stateless hash of (pixel, frame, sample, bounce, dimension, graph seed)
+// (shaders/common/random.glsl), so reruns are bit-identical on one driver.
+#extension GL_GOOGLE_include_directive : require
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+#include "common/bvh.glsl"
+#include "common/camera.glsl"
+#include "common/color.glsl"
+#include "common/random.glsl"
+#include "common/sample_layout.glsl"
+#include "common/scene_sample.glsl"
+#include "pathtrace/brdf.glsl"
+
+layout(rgba32ui) uniform readonly uimage2D visibility;
+uniform sampler2D albedo;
+layout(rgba32f) uniform writeonly image2D radiance;
+layout(rgba32f) uniform writeonly image2D demodulated;
+layout(r32f) uniform writeonly image2D hit_distance;
+layout(rgba16f) uniform writeonly image2D direct;
+layout(rgba16f) uniform writeonly image2D indirect;
+
+#ifndef PATHTRACE_COUNT_RAYS
+#define PATHTRACE_COUNT_RAYS 0
+#endif
+#if PATHTRACE_COUNT_RAYS
+// Benchmark builds (parameter countRays): rays traced, by kind: x primary (own camera rays),
+// y shadow rays from the primary hit, z indirect rays, w shadow rays from indirect hits.
+layout(std430) buffer PathTraceRays {
+    uint counts[4];
+} pathtrace_rays;
+uvec4 gRays = uvec4(0u);
+#define COUNT_RAY(kind) (gRays[kind] += 1u)
+#else
+#define COUNT_RAY(kind)
+#endif
+
+layout(push_constant) uniform Params {
+    ivec2 size;
+    uint seedLo;  // graph seed (FrameInfo::seed), low and high 32 bits
+    uint seedHi;
+    int spp;            // samples per pixel without a layout
+    int maxBounces;     // indirect rays per path
+    int useVisibility;  // 1: primary hits come from `visibility`
+    int useAlbedo;      // 1: demodulate with the `albedo` input
+    int useLayout;      // 1: trace only the pixels of the sample layout
+    float clampIndirect;  // > 0: max channel of one indirect contribution (biased); 0 = off
+} pc;
+
+const float kAlbedoEpsilon = 1e-3;  // CONTRACT: albedo' = albedo > 1e-3 ? albedo : 1
+const float kShadowShorten = 0.9999;  // shadow rays stop just before the light point
+const float kInfinity = 1e30;
+const float kHalfMax = 65504.0;
+const uint kVisTraced = 1u;
+const uint kVisHit = 2u;
+
+// Dimensions per path vertex: 4 for the light sample, 3 for the BRDF sample; 2 for the pixel.
+const uint kDimPixel = 0u;
+const uint kDimLight = 2u;
+const uint kDimBrdf = 6u;
+const uint kDimsPerVertex = 9u;
+
+uint gSampleSeed;
+
+float rand(uint vertex, uint dim) {
+    return uintToUnitFloat(hashCombine(gSampleSeed, vertex * kDimsPerVertex + dim));
+}
+
+float maxComponent(vec3 v) { return max(v.x, max(v.y, v.z)); }
+
+vec3 finiteOrZero(vec3 v) { return sanitize(vec4(v, 0.0)).rgb; }
+
+// Power heuristic (Veach), beta = 2; a + b > 0 whenever a > 0.
+float powerHeuristic(float a, float b) {
+    float a2 = a * a;
+    float d = a2 + b * b;
+    return d > 0.0 ? a2 / d : 0.0;
+}
+
+vec3 clampContribution(vec3 c) {
+    if (pc.clampIndirect <= 0.0) return c;
+    float m = maxComponent(c);
+    return m > pc.clampIndirect ? c * (pc.clampIndirect / m) : c;  // m > clamp > 0
+}
+
+// The surface as the path sees it: normals turned to the side the ray arrived from.
+struct Vertex {
+    vec3 position;
+    vec3 ng;  // geometric normal on the side of wo
+    vec3 ns;  // shading normal, same side as ng and as wo (else ng)
+    vec3 wo;  // towards the previous vertex
+    BrdfInput brdf;
+    vec3 emitted;  // radiance leaving towards wo
+};
+
+Vertex makeVertex(uint triangle, vec2 bary, vec3 rayDir) {
+    SceneSurface s = sceneSurface(triangle, bary);
+    SceneMaterialSample m = sceneMaterial(s.material, s.uv);
+    bool front = dot(s.geometricNormal, rayDir) < 0.0;
+    Vertex v;
+    v.position = s.position;
+    v.wo = -rayDir;
+    v.ng = front ? s.geometricNormal : -s.geometricNormal;
+    vec3 ns = dot(s.normal, v.ng) < 0.0 ? -s.normal : s.normal;
+    // Interpolated normals can face away from the viewer at silhouettes: fall back.
+    v.ns = dot(ns, v.wo) > 0.0 ? ns : v.ng;
+    v.brdf.baseColor = m.baseColor;
+    v.brdf.metallic = m.metallic;
+    v.brdf.roughness = m.roughness;
+    v.emitted = sceneEmission(s.material, s.uv, front);
+    return v;
+}
+
+struct PathResult {
+    vec3 direct;     // primary emission + light reaching the eye after one reflection
+    vec3 indirect;   // after two or more reflections
+    vec3 emission;   // primary emission alone (for demodulation)
+    vec3 albedo;     // own first-hit base colour (0 on a miss)
+    float hitT;      // first indirect ray's hit distance, 0 = no hit
+};
+
+// Next-event estimation at v; `last` = no BRDF ray follows (full weight, see header).
+vec3 nextEvent(Vertex v, uint vertex, bool last) {
+    SceneLightSample ls;
+    vec3 p = bvhOffsetRay(v.position, v.ng);
+    vec4 u = vec4(rand(vertex, kDimLight), rand(vertex, kDimLight + 1u),
+                  rand(vertex, kDimLight + 2u), rand(vertex, kDimLight + 3u));
+    if (!sceneSampleLight(p, u, ls)) return vec3(0.0);
+    float cosS = dot(v.ns, ls.direction);
+    if (cosS <= 0.0 || dot(v.ng, ls.direction) <= 0.0) return vec3(0.0);
+    vec3 f = brdfEval(v.brdf, v.ns, v.wo, ls.direction);
+    if (maxComponent(f) <= 0.0) return vec3(0.0);
+    float w = (ls.isDelta || last)
+                  ? 1.0
+                  : powerHeuristic(ls.pdf, brdfPdf(v.brdf, v.ns, v.wo, ls.direction));
+    if (w <= 0.0) return vec3(0.0);
+    COUNT_RAY(vertex == 1u ? 1 : 3);
+    if (bvhOccluded(p, ls.direction, 0.0, ls.distance * kShadowShorten)) return vec3(0.0);
+    return f * cosS * ls.radiance * (w / ls.pdf);  // ls.pdf > 0 when sampleLight succeeds
+}
+
+PathResult tracePath(uvec2 pixel, bool haveVisibility, uvec4 vis) {
+    PathResult r;
+    r.direct = vec3(0.0);
+    r.indirect = vec3(0.0);
+    r.emission = vec3(0.0);
+    r.albedo = vec3(0.0);
+    r.hitT = 0.0;
+    uint eye = cameraEyeOf(pixel.x);
+    uint triangle;
+    vec2 bary;
+    vec3 dir;
+    if (haveVisibility) {
+        if ((vis.w & kVisHit) == 0u || vis.x == 0u) return r;  // the GBuffer saw the sky
+        triangle = vis.x - 1u;
+        bary = vec2(uintBitsToFloat(vis.y), uintBitsToFloat(vis.z));
+        SceneSurface s = sceneSurface(triangle, bary);
+        vec3 toHit = s.position - camera_info.eyes[eye].position.xyz;
+        float len = length(toHit);
+        // The camera never sits on a visible surface (znear > 0); guard the division anyway.
+        dir = len > 0.0 ? toHit / len : vec3(0.0, 0.0, -1.0);
+    } else {
+        // P2 §3.1 rasterizes primaries at the pixel centre; references antialias instead: a
+        // uniform position inside the pixel per sample (box filter).
+        vec2 jitter = vec2(rand(0u, kDimPixel), rand(0u, kDimPixel + 1u));
+        vec3 origin;
+        cameraRay(eye, vec2(pixel) + jitter, origin, dir);
+        BvhHit hit;
+        COUNT_RAY(0);
+        if (!bvhClosestHit(origin, dir, 0.0, kInfinity, hit)) return r;  // no environment
+        triangle = hit.triangle;
+        bary = hit.barycentrics;
+    }
+    Vertex v = makeVertex(triangle, bary, dir);
+    r.albedo = v.brdf.baseColor;
+    r.emission = v.emitted;
+    r.direct = v.emitted;
+    vec3 throughput = vec3(1.0);
+    int bounces = max(pc.maxBounces, 0);
+    for (int depth = 0; depth <= bounces; ++depth) {
+        uint vertex = uint(depth) + 1u;
+        bool last = depth == bounces;
+        vec3 ne = throughput * nextEvent(v, vertex, last);
+        if (depth == 0)
+            r.direct += ne;
+        else
+            r.indirect += clampContribution(ne);
+        if (last) break;
+
+        vec3 u = vec3(rand(vertex, kDimBrdf), rand(vertex, kDimBrdf + 1u),
+                      rand(vertex, kDimBrdf + 2u));
+        vec3 wi;
+        if (!brdfSample(v.brdf, v.ns, v.wo, u, wi)) break;
+        if (dot(wi, v.ng) <= 0.0) break;  // below the geometric surface: would leak light
+        float brdfPdfValue = brdfPdf(v.brdf, v.ns, v.wo, wi);
+        throughput *= brdfWeight(v.brdf, v.ns, v.wo, wi);
+        if (maxComponent(throughput) <= 0.0) break;
+        vec3 p = bvhOffsetRay(v.position, v.ng);
+        BvhHit hit;
+        COUNT_RAY(2);
+        if (!bvhClosestHit(p, wi, 0.0, kInfinity, hit)) break;
+        if (depth == 0) r.hitT = hit.t;
+        Vertex next = makeVertex(hit.triangle, hit.barycentrics, wi);
+        if (maxComponent(next.emitted) > 0.0) {
+            // The light-sampling strategy could have produced this direction too (MIS).
+            float lightPdf = sceneEmitterPdf(hit.triangle, p, next.position);
+            vec3 e = throughput * next.emitted * powerHeuristic(brdfPdfValue, lightPdf);
+            if (depth == 0)
+                r.direct += e;
+            else
+                r.indirect += clampContribution(e);
+        }
+        v = next;
+    }
+    return r;
+}
+
+void main() {
+    uvec2 pixel;
+    uint samples;
+    uvec2 imageSize = uvec2(pc.size);
+    if (!sampleLayoutWorkItem(pc.useLayout != 0, gl_GlobalInvocationID.xy, imageSize,
+                              uint(max(pc.spp, 0)), pixel, samples))
+        return;
+    uvec4 vis = pc.useVisibility != 0 ? imageLoad(visibility, ivec2(pixel)) : uvec4(0u);
+    // A pixel the GBuffer did not trace (bit 0 clear) falls back to own primary rays.
+    bool haveVisibility = pc.useVisibility != 0 && (vis.w & kVisTraced) != 0u;
+
+    uint pixelSeed = hashCombine(hashCombine(pcgHash(pc.seedLo), pc.seedHi),
+                                 pixel.y * uint(pc.size.x) + pixel.x);
+    pixelSeed = hashCombine(pixelSeed, camera_info.frame.x);
+
+    vec3 sumDirect = vec3(0.0), sumIndirect = vec3(0.0), sumEmission = vec3(0.0);
+    vec3 sumAlbedo = vec3(0.0);
+    float sumT = 0.0;
+    uint hits = 0u;
+    for (uint s = 0u; s < samples; ++s) {
+        gSampleSeed = hashCombine(pixelSeed, s);
+        PathResult r = tracePath(pixel, haveVisibility, vis);
+        // A non-finite sample (degenerate data) contributes nothing rather than poisoning the
+        // pixel; it still counts as traced.
+        sumDirect += finiteOrZero(r.direct);
+        sumIndirect += finiteOrZero(r.indirect);
+        sumEmission += finiteOrZero(r.emission);
+        sumAlbedo += finiteOrZero(r.albedo);
+        if (r.hitT > 0.0 && !isinf(r.hitT)) {
+            sumT += r.hitT;
+            ++hits;
+        }
+    }
+#if PATHTRACE_COUNT_RAYS
+    for (int k = 0; k < 4; ++k)
+        if (gRays[k] > 0u) atomicAdd(pathtrace_rays.counts[k], gRays[k]);
+#endif
+    float n = float(samples);  // >= 1: sampleLayoutWorkItem returns false for 0 samples
+    vec3 dir = sumDirect / n;
+    vec3 ind = sumIndirect / n;
+    vec3 rad = dir + ind;
+    vec3 emission = sumEmission / n;
+    vec3 alb = pc.useAlbedo != 0 ? texelFetch(albedo, ivec2(pixel), 0).rgb : sumAlbedo / n;
+    vec3 safeAlbedo = mix(vec3(1.0), alb, greaterThan(alb, vec3(kAlbedoEpsilon)));
+    vec3 demod = (rad - emission) / safeAlbedo;  // each channel > 1e-3 or exactly 1
+    ivec2 p = ivec2(pixel);
+    imageStore(radiance, p, vec4(rad, n));
+    imageStore(demodulated, p, vec4(finiteOrZero(demod), n));
+    imageStore(hit_distance, p, vec4(hits > 0u ? sumT / float(hits) : 0.0));  // hits >= 1
+    // rgba16f saturates at 65504: clamp so a bright pixel stays finite instead of becoming inf.
+    imageStore(direct, p, vec4(min(dir, vec3(kHalfMax)), n));
+    imageStore(indirect, p, vec4(min(ind, vec3(kHalfMax)), n));
+}
