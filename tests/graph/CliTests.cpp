@@ -31,7 +31,7 @@ using nlohmann::json;
 namespace {
 
 const fs::path kRepo = fs::path(FOVEA_TEST_DIR).parent_path();
-const fs::path kDemo = kRepo / "graphs" / "demo.json";
+const fs::path kDemo = kRepo / "graphs" / "tests" / "utility_demo.json";
 
 std::string readText(const fs::path& path) {
     std::ifstream stream(path, std::ios::binary);

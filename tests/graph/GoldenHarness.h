@@ -3,7 +3,7 @@
 // a stored reference, tests/goldens/<name>/<output>.exr, described by a JSON sidecar
 // tests/goldens/<name>/<output>.json:
 //
-//   { "graph": "graphs/demo.json", "output": "acc.mean", "format": "rgba32f",
+//   { "graph": "graphs/tests/utility_demo.json", "output": "acc.mean", "format": "rgba32f",
 //     "size": [32, 32], "frames": 3, "seed": 1, "device": "llvmpipe (...)",
 //     "driver": "llvmpipe Mesa ...", "tolerance": { "rmse": 1e-05, "max_abs": 0.0001 },
 //     "created": "2025-01-01T12:00:00Z" }
@@ -18,7 +18,7 @@
 //   TEST_F(GoldenTest, Demo) {
 //       fovea::test::GoldenSpec spec;
 //       spec.name = "demo";
-//       spec.graph = "graphs/demo.json";
+//       spec.graph = "graphs/tests/utility_demo.json";
 //       EXPECT_TRUE(fovea::test::goldenMatches(ctx(), spec));
 //   }
 #pragma once
