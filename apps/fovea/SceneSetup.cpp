@@ -67,6 +67,9 @@ void addSceneOptions(CLI::App& cmd, SceneOptions& o) {
                    "gaze point in [0,1]^2 of each eye's image: x,y or xl,yl,xr,yr (default: the "
                    "centre; a camera path may override it per key)");
     cmd.add_flag("--jitter", o.jitter, "Halton (2,3) sub-pixel jitter per frame (for TAA)");
+    cmd.add_flag("--sun", o.sun,
+                 "add a white directional light (3 lux from above) to the scene, e.g. for glTF "
+                 "files without lights");
 }
 
 std::array<glm::vec2, scene::kMaxEyes> parseGaze(const std::string& text) {
@@ -112,6 +115,20 @@ RunScene::RunScene(const SceneOptions& o, const graph::GraphDesc& desc) {
     }
     mLoadMs = msSince(t0);
     mSpec = spec;
+    if (o.sun) {
+        scene::Light sun;
+        sun.type = scene::Light::Type::Directional;
+        sun.name = "--sun";
+        sun.direction =
+            glm::normalize(glm::vec3(0.3f, -1.0f, -0.4f));  // non-zero: normalize is safe
+        sun.intensity = 3.0f;
+        mScene->lights.push_back(sun);
+    }
+    if (!(mScene->features() & (graph::kSceneEmissive | graph::kScenePunctual)))
+        mScene->warnings.push_back(
+            "the scene has no light (no emissive material, no "
+            "KHR_lights_punctual light): path-traced images will be black; "
+            "--sun adds a directional light");
     if (camera.rfind("gltf:", 0) == 0) {
         mPath = scene::CameraPath::still(gltfCamera(*mScene, camera.substr(5)));
         mCameraSource = camera;

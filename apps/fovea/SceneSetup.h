@@ -29,6 +29,9 @@ struct SceneOptions {
     float ipd = 0.064f;
     std::string gaze;  // "x,y" (both eyes) or "xl,yl,xr,yr"; empty = each eye's centre
     bool jitter = false;
+    // Adds a white directional "sun" (3 lux, from above and slightly in front) to the scene:
+    // many glTF files carry no light, and path tracing them without one renders black.
+    bool sun = false;
 };
 
 // Adds the options above to a subcommand.

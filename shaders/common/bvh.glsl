@@ -40,9 +40,14 @@ float bvhBoxEntry(vec3 bmin, vec3 bmax, vec3 origin, vec3 invDir, float tMin, fl
     return tNear <= tFar ? tNear : kBvhMiss;
 }
 
-// Ray vs triangle (v0, e1 = v1 - v0, e2 = v2 - v0). Edges count as inside, so a ray through a
-// shared edge hits one of the two triangles. On a hit in (tMin, tMax) returns true with t and
-// barycentrics; degenerate triangles and rays in the triangle's plane never hit.
+// Ray vs triangle (v0, e1 = v1 - v0, e2 = v2 - v0). Edges count as inside and are widened by a
+// relative slack of kBvhEdgeSlack: Moeller-Trumbore is not watertight (the two triangles of a
+// shared edge compute it from different vertices and edges, and a slightly non-planar quad
+// rounds both ways), so without slack a ray exactly through a shared edge could miss both and
+// see through a wall. With it, such a ray hits at least one; barycentrics are clamped back into
+// the triangle. On a hit in (tMin, tMax) returns true with t and barycentrics; degenerate
+// triangles and rays in the triangle's plane never hit.
+const float kBvhEdgeSlack = 1e-6;
 bool bvhIntersectTriangle(vec3 origin, vec3 direction, vec3 v0, vec3 e1, vec3 e2, float tMin,
                           float tMax, out float t, out vec2 barycentrics) {
     t = 0.0;
@@ -53,11 +58,12 @@ bool bvhIntersectTriangle(vec3 origin, vec3 direction, vec3 v0, vec3 e1, vec3 e2
     float absDet = abs(det);
     vec3 tv = origin - v0;
     float u = dot(tv, p) * s;
+    float slack = kBvhEdgeSlack * absDet;
     // Written as positive tests so NaN (from huge coordinates) rejects.
-    if (!(u >= 0.0 && u <= absDet)) return false;
+    if (!(u >= -slack && u <= absDet + slack)) return false;
     vec3 q = cross(tv, e1);
     float v = dot(direction, q) * s;
-    if (!(v >= 0.0 && u + v <= absDet)) return false;
+    if (!(v >= -slack && u + v <= absDet + slack)) return false;
     float tScaled = dot(e2, q) * s;
     if (!(absDet > 0.0)) return false;
     float inv = 1.0 / absDet;  // absDet > 0; a denormal may give inf, then t is inf or NaN and
@@ -65,7 +71,8 @@ bool bvhIntersectTriangle(vec3 origin, vec3 direction, vec3 v0, vec3 e1, vec3 e2
     float tt = tScaled * inv;
     if (!(tt > tMin && tt < tMax)) return false;
     t = tt;
-    barycentrics = vec2(u, v) * inv;
+    vec2 b = clamp(vec2(u, v) * inv, 0.0, 1.0);
+    barycentrics = b.x + b.y > 1.0 ? b / (b.x + b.y) : b;  // b.x + b.y > 1 > 0 here
     return true;
 }
 

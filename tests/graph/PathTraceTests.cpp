@@ -44,9 +44,14 @@ struct LoadedScene {
 
 // A textured Khronos sample with a point light added (the file has none) so textured surfaces
 // are lit and shadow rays run.
+fs::path texturedBoxFile() {
+    return (fs::path(FOVEA_TEST_DIR) / ".." / ".." / "shared" / "scenes" /
+            "assimp-khronos-samples" / "BoxTextured-glTF" / "BoxTextured.gltf")
+        .lexically_normal();
+}
+
 scene::Scene texturedBox() {
-    fs::path file = fs::path(FOVEA_TEST_DIR) / ".." / ".." / "shared" / "scenes" /
-                    "assimp-khronos-samples" / "BoxTextured-glTF" / "BoxTextured.gltf";
+    fs::path file = texturedBoxFile();
     scene::Scene s = scene::loadScene(file.lexically_normal().string());
     scene::Light light;
     light.type = scene::Light::Type::Point;
@@ -326,6 +331,13 @@ TEST_F(PathTraceTest, OutputsAreFiniteOnCornellAndATexturedScene) {
     const std::string outputs =
         R"("pt.radiance", "pt.demodulated", "pt.hit_distance", "pt.direct", "pt.indirect")";
     for (const std::string scene : {"builtin:cornell", "textured"}) {
+        // The shared scenes sit next to the project (../shared); a checkout without them still
+        // checks the Cornell box.
+        if (scene == "textured" && !fs::exists(texturedBoxFile())) {
+            std::printf("note: %s not present; textured scene not checked\n",
+                        texturedBoxFile().c_str());
+            continue;
+        }
         for (const std::string brdf : {"lambert", "ggx"}) {
             auto g = makeGraph(
                 scene, graphText(R"({ "spp": 2, "maxBounces": 4, "brdf": ")" + brdf + "\" }", "",

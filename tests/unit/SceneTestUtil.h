@@ -111,17 +111,19 @@ inline bool intersectTriangle(const glm::vec3& origin, const glm::vec3& directio
     const float absDet = std::abs(det);
     const glm::vec3 tv = origin - a;
     const float u = glm::dot(tv, p) * s;
-    if (!(u >= 0.0f && u <= absDet)) return false;
+    const float slack = 1e-6f * absDet;  // kBvhEdgeSlack
+    if (!(u >= -slack && u <= absDet + slack)) return false;
     const glm::vec3 q = glm::cross(tv, e1);
     const float v = glm::dot(direction, q) * s;
-    if (!(v >= 0.0f && u + v <= absDet)) return false;
+    if (!(v >= -slack && u + v <= absDet + slack)) return false;
     const float tScaled = glm::dot(e2, q) * s;
     if (!(absDet > 0.0f)) return false;
     const float inv = 1.0f / absDet;
     const float tt = tScaled * inv;
     if (!(tt > tMin && tt < tMax)) return false;
     t = tt;
-    bary = glm::vec2(u, v) * inv;
+    glm::vec2 w = glm::clamp(glm::vec2(u, v) * inv, 0.0f, 1.0f);
+    bary = w.x + w.y > 1.0f ? w / (w.x + w.y) : w;
     return true;
 }
 
