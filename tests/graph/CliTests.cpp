@@ -5,151 +5,9 @@
 // Every test spawns FOVEA_EXE with stdout/stderr captured to files in a per-test temporary
 // directory (removed afterwards). GPU runs are kept tiny (32x32, 2 frames): the suite runs on
 // lavapipe. FOVEA_VALIDATION=1 in the environment (set by ctest) is inherited by the children.
-#include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
+#include "tests/graph/CliTestUtil.h"
 
-#include <algorithm>
-#include <atomic>
-#include <cmath>
-#include <cstdlib>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <nlohmann/json.hpp>
-#include <random>
-#include <set>
-#include <sstream>
-#include <string>
-#include <vector>
-
-#include "core/image/ImageIO.h"
-
-namespace fs = std::filesystem;
-using nlohmann::json;
-
-namespace {
-
-const fs::path kRepo = fs::path(FOVEA_TEST_DIR).parent_path();
-const fs::path kDemo = kRepo / "graphs" / "tests" / "utility_demo.json";
-
-std::string readText(const fs::path& path) {
-    std::ifstream stream(path, std::ios::binary);
-    std::stringstream buffer;
-    buffer << stream.rdbuf();
-    return buffer.str();
-}
-
-void writeText(const fs::path& path, const std::string& text) {
-    std::ofstream(path, std::ios::binary) << text;
-}
-
-// A fresh, uniquely named directory under the system temp dir; removed with everything in it.
-class TempDir {
-public:
-    TempDir() {
-        static std::atomic<int> counter{0};
-        const auto* info = testing::UnitTest::GetInstance()->current_test_info();
-        std::string test = info ? info->name() : "suite";
-        std::random_device random;
-        mPath = fs::temp_directory_path() /
-                ("fovea_cli_" + test + "_" + std::to_string(::getpid()) + "_" +
-                 std::to_string(counter++) + "_" + std::to_string(random() % 1000000));
-        fs::remove_all(mPath);
-        fs::create_directories(mPath);
-    }
-    ~TempDir() {
-        std::error_code ignored;
-        fs::remove_all(mPath, ignored);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    const fs::path& path() const { return mPath; }
-    fs::path operator/(const std::string& name) const { return mPath / name; }
-
-private:
-    fs::path mPath;
-};
-
-std::string shellQuote(const std::string& s) {
-    std::string out = "'";
-    for (char c : s) {
-        if (c == '\'')
-            out += "'\\''";
-        else
-            out += c;
-    }
-    return out + "'";
-}
-
-struct Result {
-    int code = -1;
-    std::string out, err;
-    std::string command;
-    // For assertion messages.
-    std::string describe() const {
-        return "command: " + command + "\nexit code: " + std::to_string(code) + "\nstdout:\n" +
-               out + "\nstderr:\n" + err;
-    }
-};
-
-// Runs FOVEA_EXE with `args` (no shell interpretation of the arguments), capturing both streams.
-Result cli(const std::vector<std::string>& args) {
-    TempDir capture;
-    Result r;
-    r.command = shellQuote(FOVEA_EXE);
-    for (const auto& a : args) r.command += " " + shellQuote(a);
-    std::string line = r.command + " </dev/null >" + shellQuote((capture / "stdout").string()) +
-                       " 2>" + shellQuote((capture / "stderr").string());
-    int status = std::system(line.c_str());
-    if (status != -1 && WIFEXITED(status))
-        r.code = WEXITSTATUS(status);
-    else
-        r.code = 1000 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);  // never 0, 1 or 2
-    // (a child killed by a signal shows up as exit code 128 + signal through the shell)
-    r.out = readText(capture / "stdout");
-    r.err = readText(capture / "stderr");
-    return r;
-}
-
-bool contains(const std::string& text, const std::string& fragment) {
-    return text.find(fragment) != std::string::npos;
-}
-
-// Exit status 2 and stderr containing every fragment.
-void expectInputError(const Result& r, std::initializer_list<std::string> fragments) {
-    EXPECT_EQ(r.code, 2) << r.describe();
-    for (const auto& f : fragments)
-        EXPECT_TRUE(contains(r.err, f)) << "'" << f << "' not in stderr\n" << r.describe();
-}
-
-// `fovea run graph --out DIR --frames 2 --size 32x32 extra...`; output in a fresh subdirectory.
-Result runSmall(const fs::path& graph, const fs::path& out, std::vector<std::string> extra = {}) {
-    std::vector<std::string> args = {"run", graph.string(), "--out", out.string(), "--frames",
-                                     "2",   "--size",       "32x32"};
-    args.insert(args.end(), extra.begin(), extra.end());
-    return cli(args);
-}
-
-std::vector<float> pixels(const fs::path& exr) {
-    return ::fovea::image::readImage(exr).pixels;
-}
-
-void expectStats(const json& stats, const std::string& what) {
-    ASSERT_TRUE(stats.is_object()) << what;
-    for (const char* key : {"mean", "median", "min", "max"}) {
-        ASSERT_TRUE(stats.contains(key) && stats[key].is_number()) << what << "." << key;
-        double v = stats[key].get<double>();
-        EXPECT_TRUE(std::isfinite(v) && v >= 0.0) << what << "." << key << " = " << v;
-    }
-    double mn = stats["min"], mx = stats["max"], mean = stats["mean"], med = stats["median"];
-    EXPECT_LE(mn, mean) << what;
-    EXPECT_LE(mean, mx) << what;
-    EXPECT_LE(mn, med) << what;
-    EXPECT_LE(med, mx) << what;
-}
-
-}  // namespace
+using namespace fovea::clitest;
 
 // --- run: the documented report and the written images ---------------------------------------
 
@@ -606,10 +464,12 @@ TEST(CliFixes, SaveFramesTrailingOrLeadingCommaIsRejected) {
 }
 
 TEST(CliFixes, ValidateRejectsABypassSizeMismatchLikeRun) {
-    const fs::path bad = kRepo / "tests" / "graph" / "bad" / "compile" / "bypass_size_mismatch.json";
+    const fs::path bad =
+        kRepo / "tests" / "graph" / "bad" / "compile" / "bypass_size_mismatch.json";
     const std::string message =
-        bad.string() + ": /passes/1: pass 'b' bypasses 'color' into 'result' but they differ in "
-                       "size or format";
+        bad.string() +
+        ": /passes/1: pass 'b' bypasses 'color' into 'result' but they differ in "
+        "size or format";
     Result v = cli({"validate", bad.string()});
     expectInputError(v, {message});
     EXPECT_FALSE(contains(v.out, "ok")) << v.describe();
