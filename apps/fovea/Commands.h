@@ -64,6 +64,16 @@ struct PassesOptions {
 void addPassesCommand(CLI::App& app, PassesOptions& options);
 int passesCommand(const PassesOptions& options);
 
+// `fovea compare`: error metrics of an image against a reference (docs/metrics.md).
+struct CompareOptions {
+    std::string test, reference;
+    bool json = false;
+    double peak = 1.0;
+    double epsilon = 1e-2;
+};
+void addCompareCommand(CLI::App& app, CompareOptions& options);
+int compareCommand(const CompareOptions& options);
+
 // Shared by run/validate/bench: parse the graph file and apply --set overrides (each checked
 // against the pass's declared parameters, errors naming the flag).
 graph::GraphDesc loadGraph(const GraphOptions& options);

@@ -37,10 +37,12 @@ int main(int argc, char** argv) {
     ValidateOptions validate;
     PassesOptions passes;
     ReferenceOptions reference;
+    CompareOptions compare;
     addRunCommand(app, run);
     addReferenceCommand(app, reference);
     addValidateCommand(app, validate);
     addPassesCommand(app, passes);
+    addCompareCommand(app, compare);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -63,6 +65,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("reference")) return referenceCommand(reference);
         if (app.got_subcommand("validate")) return validateCommand(validate);
         if (app.got_subcommand("passes")) return passesCommand(passes);
+        if (app.got_subcommand("compare")) return compareCommand(compare);
     } catch (const fovea::InputError& e) {
         std::cerr << "error: " << e.what() << "\n";
         return kExitInput;

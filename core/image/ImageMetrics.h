@@ -1,0 +1,74 @@
+// Error metrics of a rendered image against a reference (docs/metrics.md): RMSE, RMSE %, relMSE,
+// PSNR, SSIM, and the temporal error of consecutive frames. Used by `fovea compare` and by the
+// per-frame error figures of `run --reference` / `bench`. compareImages (ImageCompare.h) stays
+// the golden-test check; these are the figures the papers report.
+#pragma once
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+#include <vector>
+
+#include "core/image/ImageIO.h"
+
+namespace fovea::image {
+
+struct MetricOptions {
+    // Signal peak: the PSNR numerator and the SSIM dynamic range L (Wang et al. 2004 Eq. 7).
+    // 1.0 for images in [0,1]; HDR values above it are not clamped (docs/metrics.md).
+    double peak = 1.0;
+    // relMSE = (x - y)^2 / (y^2 + eps): eps keeps dark reference pixels from dominating.
+    double relMseEpsilon = 1e-2;
+};
+
+// Every figure of `test` against `reference`, over the RGB channels (alpha is ignored).
+struct ImageMetrics {
+    uint32_t width = 0, height = 0;
+    double mse = 0;          // mean over pixels and RGB channels of (x - y)^2
+    double rmse = 0;         // sqrt(mse)
+    double rmsePercent = 0;  // 100 * rmse / peak (Peres et al. Table 4 "RMSE (%)")
+    double relMse = 0;       // mean of (x - y)^2 / (y^2 + eps)
+    double psnr = 0;         // dB, 10 log10(peak^2 / mse); +infinity when mse == 0
+    double ssim = 0;         // mean SSIM of the R, G and B channels
+    // Mean |Y(test) - Y(reference)| (Rec. 709 luminance): the temporal error when the two
+    // images are consecutive frames (reference = the earlier one).
+    double meanAbsLuminanceDiff = 0;
+};
+
+// Throws InputError naming the images when their sizes differ or an RGB value is NaN/Inf.
+ImageMetrics computeMetrics(const ImageRGBA& test, const ImageRGBA& reference,
+                            const MetricOptions& options = {},
+                            const std::string& testName = "test image",
+                            const std::string& referenceName = "reference image");
+
+// The metrics as JSON (keys of docs/metrics.md, as `fovea compare --json` prints them):
+// mse, rmse, rmse_percent, rel_mse, rel_mse_epsilon, psnr_db (null when infinite), peak, ssim,
+// temporal_error. For report.json / bench.json too, so every tool uses the same keys.
+nlohmann::json metricsToJson(const ImageMetrics& metrics, const MetricOptions& options);
+
+// Throws InputError "<name>: pixel (x, y) channel G is NaN" at the first non-finite RGB value.
+void checkFinite(const ImageRGBA& image, const std::string& name);
+// Throws InputError naming both images and their sizes when they differ.
+void checkSameSize(const ImageRGBA& a, const ImageRGBA& b, const std::string& nameA,
+                   const std::string& nameB);
+
+// Rec. 709 / sRGB primaries luminance of linear RGB.
+inline double luminance(double r, double g, double b) {
+    return 0.2126 * r + 0.7152 * g + 0.0722 * b;
+}
+
+// SSIM of one channel plane (width * height values, row-major), Wang et al. 2004: Gaussian
+// window 11x11, sigma 1.5, K1 = 0.01, K2 = 0.03, dynamic range `range`; mean over the windows
+// that lie entirely inside the image. An axis shorter than 11 px uses the largest odd window
+// that fits (same sigma, renormalized). Inputs must be finite (no check here).
+double ssimPlane(const std::vector<double>& x, const std::vector<double>& y, uint32_t width,
+                 uint32_t height, double range = 1.0);
+
+// Temporal error of two consecutive frames (Schied et al. 2017, as used in seed 003 P2 §7.1):
+// mean over pixels of |Y(current) - Y(previous)|. Checks sizes and finiteness like
+// computeMetrics.
+double temporalError(const ImageRGBA& previous, const ImageRGBA& current,
+                     const std::string& previousName = "previous frame",
+                     const std::string& currentName = "current frame");
+// Mean of temporalError over the consecutive pairs of `frames` (0 for fewer than two frames).
+double temporalError(const std::vector<ImageRGBA>& frames);
+
+}  // namespace fovea::image
