@@ -24,7 +24,7 @@ struct ReportInputs {
     std::vector<std::string> outputs;  // written files, relative to the out dir
 };
 
-constexpr int kReportSchemaVersion = 1;
+constexpr int kReportSchemaVersion = 2;
 nlohmann::json buildReport(const graph::RenderGraph& graph, const ReportInputs& in);
 
 }  // namespace fovea::app

@@ -21,11 +21,13 @@ TEST(CliRun, DemoWritesReportAndImages) {
     json report = json::parse(readText(out / "report.json"), nullptr, false);
     ASSERT_FALSE(report.is_discarded()) << readText(out / "report.json");
 
-    EXPECT_EQ(report.at("report_version"), 1);
+    EXPECT_EQ(report.at("report_version"), 2);
     ASSERT_TRUE(report.at("fovea_version").is_string());
     EXPECT_FALSE(report["fovea_version"].get<std::string>().empty());
     EXPECT_EQ(report.at("graph"), kDemo.string());
     EXPECT_EQ(report.at("scene"), "none");
+    EXPECT_TRUE(report.at("build_ms").is_number());
+    EXPECT_GT(report.at("build_ms").get<double>(), 0.0);
     ASSERT_TRUE(report.at("device").is_object());
     ASSERT_TRUE(report["device"].at("name").is_string());
     ASSERT_TRUE(report["device"].at("driver").is_string());
