@@ -1,9 +1,11 @@
 // The explicit list of built-in pass types (ARCHITECTURE "Pass contract"). Adding a pass = one
 // line here + passes/<Name>/ + shaders/<name>/ + docs/passes/<Name>.md.
 #include "core/graph/PassRegistry.h"
+#include "passes/ATrousNH/ATrousNHPass.h"
 #include "passes/Accumulate/AccumulatePass.h"
 #include "passes/Blit/BlitPass.h"
 #include "passes/Combine/CombinePass.h"
+#include "passes/FoveationMask/FoveationMaskPass.h"
 #include "passes/GBuffer/GBufferPass.h"
 #include "passes/ImageSource/ImageSourcePass.h"
 #include "passes/PathTrace/PathTracePass.h"
@@ -39,6 +41,14 @@ void registerBuiltinPasses() {
         "GBuffer",
         "Primary visibility by BVH ray casting, full grid or a sample layout, both eyes in one "
         "dispatch: visibility, position, normal, depth, albedo, motion (seed 000 §3.1)."));
+    r.add(info<passes::FoveationMaskPass>(
+        "FoveationMask",
+        "Seed 000's 3-layer foveated distribution (§3.2, Table 1) around each eye's gaze: sample "
+        "layout with per-layer spp + mask (B of Eq. 2, layer id)."));
+    r.add(info<passes::ATrousNHPass>(
+        "ATrousNH",
+        "Edge-avoiding à-trous denoiser (Dammertz 2010) made non-homogeneous (seed 000 §3.4, "
+        "Eq. 2, Alg. 1): sample mask, per-layer iterations, decreasing steps, stereo, no holes."));
     r.add(info<passes::SampleListPass>(
         "SampleList",
         "Sample layout from a pattern (all, checkerboard, every n-th, seeded random fraction) with "

@@ -1,0 +1,154 @@
+#include "passes/ATrousNH/ATrousNHPass.h"
+
+#include <algorithm>
+#include <glm/vec2.hpp>
+
+#include "core/scene/Camera.h"
+#include "core/util/Error.h"
+#include "core/vk/ComputePipeline.h"
+#include "core/vk/Resources.h"
+
+namespace fovea::passes {
+
+namespace {
+const std::vector<std::string> kStepOrders = {"decreasing", "increasing"};
+const std::vector<std::string> kSchedules = {"levels", "layers"};
+constexpr int kMaxIterations = 16;
+
+// 1 / sigma^2, or 0 = the term is off (sigma 0 would divide by zero).
+float invSquare(float sigma) {
+    return sigma > 0.0f ? 1.0f / (sigma * sigma) : 0.0f;
+}
+}  // namespace
+
+void ATrousNHPass::params(graph::ParamVisitor& v) {
+    v.add("layers", mLayers, 1,
+          "foveation layers (seed 000 §3.4): 1 = classic full-screen à-trous (mask layer ids "
+          "ignored), 2 = NH2LD, 3 = NH3LD; mask layer ids >= layers count as the last layer",
+          {1, 3});
+    v.add("iterations0", mIterations[0], 5,
+          "à-trous iterations of layer 0 (fovea; seed 000's M); the only one used with 1 layer",
+          {0, kMaxIterations});
+    v.add("iterations1", mIterations[1], 0,
+          "iterations of layer 1 (middle; seed 000's N, expected > M)", {0, kMaxIterations});
+    v.add("iterations2", mIterations[2], 0,
+          "iterations of layer 2 (outer; seed 000's P, expected > N)", {0, kMaxIterations});
+    v.add("stepOrder", mStepOrder, "decreasing",
+          "decreasing: steps 2^(n-1) .. 1 (Qi et al., seed 000 §3.4 Fig. 7); increasing: 1 .. "
+          "2^(n-1) (Dammertz 2010)",
+          kStepOrders);
+    v.add("schedule", mSchedule, "levels",
+          "levels: one dispatch per step level for all layers at once (max(M,N,P) dispatches); "
+          "layers: Algorithm 1 literally, layer after layer (M+N+P dispatches)",
+          kSchedules);
+    v.add("fill", mFill, true,
+          "after the iterations, hole-fill levels (steps 1, 2, 4, ...) give every pixel still "
+          "without a value the weighted mean of valid pixels (no holes)");
+    v.add("eyes", mEyes, 0,
+          "side-by-side eyes (no tap crosses the seam); 0 = the frame camera's eye count", {0, 2});
+    v.add("sigmaColor", mSigmaColor, 1.0f,
+          "colour weight exp(-|c_p - c_q|^2 / sigma^2) (Dammertz Eq. 6); 0 = off", {0.0, 1e30});
+    v.add("sigmaNormal", mSigmaNormal, 0.2f,
+          "normal weight exp(-|n_p - n_q|^2 / (step^2 sigma^2)) (Dammertz's code); 0 = off",
+          {0.0, 1e30});
+    v.add("sigmaPosition", mSigmaPosition, 0.5f,
+          "position weight exp(-|x_p - x_q|^2 / sigma^2), scene units; 0 = off", {0.0, 1e30});
+}
+
+void ATrousNHPass::reflect(graph::Reflection& r) const {
+    r.input("color", vk::Format::eR32G32B32A32Sfloat)
+        .doc("noisy radiance (e.g. PathTrace demodulated); a = samples, 0 = unsampled");
+    r.input("normal").optional().floatOnly().sameAs("color").doc(
+        "GBuffer world normal (rgb); open = no normal weight");
+    r.input("position")
+        .optional()
+        .floatOnly()
+        .sameAs("color")
+        .doc("GBuffer world position (rgb); open = no position weight");
+    r.input("mask", vk::Format::eR32Uint)
+        .optional()
+        .sameAs("color")
+        .doc(
+            "FoveationMask word: bit 0 sampled, bits 1-2 layer (0 fovea, 1 middle, 2 outer); "
+            "open = one layer, sampled = color.a > 0");
+    r.output("denoised", vk::Format::eR32G32B32A32Sfloat)
+        .sameAs("color")
+        .doc("denoised radiance; a = 1 where the pixel has a value, 0 where its eye has none");
+    r.internal("ping", vk::Format::eR32G32B32A32Sfloat)
+        .sameAs("color")
+        .doc("iteration state A: rgb colour, a = valid (1) or not (0)");
+    r.internal("pong", vk::Format::eR32G32B32A32Sfloat)
+        .sameAs("color")
+        .doc("iteration state B (ping-pong with A)");
+}
+
+void ATrousNHPass::compile(graph::CompileContext& ctx) {
+    mUseMask = ctx.connected("mask");
+    mUseNormal = ctx.connected("normal");
+    mUsePosition = ctx.connected("position");
+    // Not enforced: M < N < P is the paper's advice (§3.4), not a validity condition.
+    mVariant =
+        "layers=" + std::to_string(mLayers) + ",iterations=" + std::to_string(mIterations[0]);
+    for (int l = 1; l < mLayers; ++l) mVariant += "/" + std::to_string(mIterations[l]);
+    mVariant += "," + mStepOrder + "," + mSchedule + (mFill ? ",fill" : "") +
+                (mUseMask ? ",mask" : "") + (mUseNormal ? ",normal" : "") +
+                (mUsePosition ? ",position" : "");
+    mPipeline = ctx.createPipeline("atrous_nh/atrous_nh.comp");
+}
+
+ATrousScheduleOptions ATrousNHPass::scheduleOptions(int width, int height, int eyes) const {
+    ATrousScheduleOptions o;
+    o.layerCount = mLayers;
+    for (int l = 0; l < 3; ++l) o.iterations[l] = mIterations[l];
+    o.decreasing = mStepOrder != "increasing";
+    o.perLayer = mSchedule == "layers";
+    o.fill = mFill;
+    o.fillReach = std::max(width / std::max(eyes, 1), height);
+    return o;
+}
+
+void ATrousNHPass::execute(graph::ExecuteContext& ctx) {
+    const auto& out = ctx.image("denoised");
+    const int width = int(out.width()), height = int(out.height());
+    int eyes = mEyes > 0 ? mEyes : int(std::max(ctx.camera().eyeCount, 1u));
+    if (eyes > width) eyes = 1;         // a 1-pixel-wide image cannot be split
+    const int eyeWidth = width / eyes;  // >= 1; the last eye takes the remainder
+    const auto schedule = buildATrousSchedule(scheduleOptions(width, height, eyes));
+
+    ctx.bindFields(*mPipeline);
+    mPipeline->set("size", glm::ivec2(width, height))
+        .set("eyeWidth", eyeWidth)
+        .set("eyes", eyes)
+        .set("layerCount", mLayers)
+        .set("useMask", int(mUseMask))
+        .set("invSigmaColor2", invSquare(mSigmaColor))
+        .set("invSigmaNormal2", mUseNormal ? invSquare(mSigmaNormal) : 0.0f)
+        .set("invSigmaPosition2", mUsePosition ? invSquare(mSigmaPosition) : 0.0f);
+
+    // State images: 0 = the input (dispatch 0 only), 1 = ping, 2 = pong; the last dispatch writes
+    // 0 = `denoised`. Barriers order the dispatches of this pass (the graph orders passes).
+    int src = 0;
+    for (size_t i = 0; i < schedule.size(); ++i) {
+        const bool last = i + 1 == schedule.size();
+        const int dst = last ? 0 : (i % 2 == 0 ? 1 : 2);
+        if (i > 0) {
+            vk::MemoryBarrier2 barrier{.srcStageMask = vk::PipelineStageFlagBits2::eComputeShader,
+                                       .srcAccessMask = vk::AccessFlagBits2::eShaderStorageWrite |
+                                                        vk::AccessFlagBits2::eShaderStorageRead,
+                                       .dstStageMask = vk::PipelineStageFlagBits2::eComputeShader,
+                                       .dstAccessMask = vk::AccessFlagBits2::eShaderStorageWrite |
+                                                        vk::AccessFlagBits2::eShaderStorageRead};
+            ctx.cmd().pipelineBarrier2(
+                vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &barrier});
+        }
+        mPipeline->set("src", src)
+            .set("dst", dst)
+            .set("activeLayers", int(schedule[i].layers))
+            .set("stepWidth", schedule[i].step)
+            .set("fillOnly", int(schedule[i].fill));
+        mPipeline->dispatch(ctx.cmd(), out.width(), out.height());
+        src = dst;
+    }
+}
+
+}  // namespace fovea::passes

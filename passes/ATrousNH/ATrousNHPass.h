@@ -1,0 +1,41 @@
+// ATrousNH: edge-avoiding à-trous wavelet denoiser (Dammertz et al. 2010) with seed 000's
+// non-homogeneous changes (Peres et al. 2023, §3.4, Eq. 2, Algorithm 1): a sample mask in the
+// weights, per-layer iteration counts, decreasing step width, both eyes in one dispatch. With one
+// layer and no mask it is the classic full-screen à-trous (the Base pipeline's denoiser).
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/graph/Pass.h"
+#include "passes/ATrousNH/ATrousSchedule.h"
+
+namespace fovea::passes {
+
+class ATrousNHPass : public graph::Pass {
+public:
+    void params(graph::ParamVisitor& v) override;
+    void reflect(graph::Reflection& r) const override;
+    void compile(graph::CompileContext& ctx) override;
+    void execute(graph::ExecuteContext& ctx) override;
+    std::string variant() const override { return mVariant; }
+
+    // The schedule execute() records for an image of `width` x `height` with `eyes` eyes.
+    ATrousScheduleOptions scheduleOptions(int width, int height, int eyes) const;
+
+private:
+    int mLayers = 1;
+    int mIterations[3] = {5, 0, 0};
+    std::string mStepOrder = "decreasing";
+    std::string mSchedule = "levels";
+    bool mFill = true;
+    int mEyes = 0;
+    float mSigmaColor = 1.0f;
+    float mSigmaNormal = 0.2f;
+    float mSigmaPosition = 0.5f;
+    bool mUseMask = false, mUseNormal = false, mUsePosition = false;
+    std::string mVariant;
+    std::unique_ptr<gpu::ComputePipeline> mPipeline;
+};
+
+}  // namespace fovea::passes

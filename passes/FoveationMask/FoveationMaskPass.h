@@ -1,0 +1,42 @@
+// FoveationMask: seed 000's foveation distribution step (Peres et al. 2023, §3.2 and §4.1):
+// three concentric layers around each eye's gaze point - the fovea (radius r0, every pixel),
+// the middle ring (r0..r1, sampling probability falling linearly from 1 to the outer one, after
+// Weier et al.) and the outer layer (constant probability) - written as a coordinate-list sample
+// layout (docs/sample-layouts.md) with a per-layer spp (Table 1: 4 / 3 / 2) and as the binary
+// mask B of Eq. 2 (with the layer id, for the non-homogeneous denoiser, §3.4).
+#pragma once
+#include "core/graph/Pass.h"
+#include "core/scene/SampleLayout.h"
+
+namespace fovea::passes {
+
+class FoveationMaskPass : public graph::Pass {
+public:
+    void params(graph::ParamVisitor& v) override;
+    void reflect(graph::Reflection& r) const override;
+    // Reads only the camera (gaze, size, FOV), never the geometry. The graph mixes the camera
+    // into a cacheable pass's cache key only for passes with sceneNeeds() != 0
+    // (RenderGraph::cacheKey), so the geometry need is declared to keep the cached mask in step
+    // with the gaze. Cost: culled without a scene (no consumer of a layout runs without one).
+    uint32_t sceneNeeds() const override { return graph::kSceneGeometry; }
+    void compile(graph::CompileContext& ctx) override;
+    void execute(graph::ExecuteContext& ctx) override;
+    // Seed 000 §3.2: the distribution "is constant for all frames"; only `animate` (a new random
+    // toss every frame) makes the output depend on the frame index.
+    bool cacheable() const override { return !mAnimate; }
+    std::string variant() const override { return mRadiusUnit; }
+
+private:
+    void check() const;
+
+    float mR0 = 144.0f, mR1 = 288.0f;
+    std::string mRadiusUnit;
+    float mOuterProbability = 0.5f;
+    int mSppFovea = 4, mSppMiddle = 3, mSppOuter = 2;
+    int mSeed = 0;
+    bool mAnimate = false;
+    int mCapacity = 0;
+    std::unique_ptr<gpu::ComputePipeline> mPipeline;
+};
+
+}  // namespace fovea::passes

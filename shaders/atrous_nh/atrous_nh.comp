@@ -1,0 +1,128 @@
+#version 460
+// ATrousNH: one level of the non-homogeneous edge-avoiding à-trous filter (seed 000 §3.4,
+// Eq. 2, Algorithm 1; Dammertz et al. 2010). The pass dispatches this shader once per level of
+// its schedule, ping-ponging between two state images (rgb colour, a = valid 0/1).
+//  - Pixels of layers not in `activeLayers` are copied unchanged (Algorithm 1: "each iteration
+//    in a layer reconstructs only the area corresponding to that layer"); neighbours are read
+//    from any layer.
+//  - b(i, j) of Eq. 2 is the neighbour's validity: an unsampled pixel never contributes.
+//  - Taps outside the image or in the other eye are skipped (§3.4: "neighbor pixels could be out
+//    of screen"; stereo images are side by side, §3.3).
+//  - No holes: a pixel without a value takes the mean of the valid taps and becomes valid (a
+//    source for later levels); hole-fill levels (fillOnly) update only such pixels.
+#extension GL_GOOGLE_include_directive : require
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+uniform sampler2D color;
+uniform sampler2D normal;
+uniform sampler2D position;
+layout(r32ui) uniform readonly uimage2D mask;
+layout(rgba32f) uniform image2D ping;
+layout(rgba32f) uniform image2D pong;
+layout(rgba32f) uniform writeonly image2D denoised;
+
+layout(push_constant) uniform Params {
+    ivec2 size;
+    int eyeWidth;      // >= 1
+    int eyes;          // 1 or 2
+    int layerCount;    // 1..3
+    int useMask;
+    int src;           // 0 = input color (+ mask), 1 = ping, 2 = pong
+    int dst;           // 0 = denoised, 1 = ping, 2 = pong
+    int activeLayers;  // bit l: layer l is updated
+    int stepWidth;     // 2^i
+    int fillOnly;      // 1: only pixels without a value are updated
+    float invSigmaColor2;     // 1 / sigma^2; 0 = term off
+    float invSigmaNormal2;
+    float invSigmaPosition2;
+} pc;
+
+// Mask word (FoveationMask): bit 0 sampled (B of Eq. 2), bits 1-2 layer id, bits 16-31 spp.
+const uint kSampledBit = 1u;
+const float kB3[5] = float[5](1.0 / 16.0, 1.0 / 4.0, 3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);
+
+bool finite4(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
+
+// State of pixel q: rgb and validity. From the input, invalid pixels read as 0 so that their
+// (possibly huge or NaN) colour is never even copied.
+vec4 loadState(ivec2 q) {
+    if (pc.src == 1) return imageLoad(ping, q);
+    if (pc.src == 2) return imageLoad(pong, q);
+    vec4 c = texelFetch(color, q, 0);
+    bool ok = c.a > 0.0 && finite4(c);
+    if (pc.useMask != 0) ok = ok && (imageLoad(mask, q).r & kSampledBit) != 0u;
+    return ok ? vec4(c.rgb, 1.0) : vec4(0.0);
+}
+
+void storeState(ivec2 p, vec4 s) {
+    if (pc.dst == 1) imageStore(ping, p, s);
+    else if (pc.dst == 2) imageStore(pong, p, s);
+    else imageStore(denoised, p, s);
+}
+
+int layerOf(ivec2 p) {
+    if (pc.useMask == 0 || pc.layerCount <= 1) return 0;
+    return int(min((imageLoad(mask, p).r >> 1) & 3u, uint(pc.layerCount - 1)));
+}
+
+// exp(-d2 * invSigma2) in [0, 1]; a NaN (non-finite G-buffer) counts as no similarity.
+float edgeWeight(float d2, float invSigma2) {
+    float w = exp(-d2 * invSigma2);
+    return isnan(w) ? 0.0 : w;
+}
+
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, pc.size))) return;
+    vec4 centre = loadState(p);
+    bool centreValid = centre.a > 0.5;
+    bool updated = pc.fillOnly != 0 ? !centreValid : ((pc.activeLayers >> layerOf(p)) & 1) != 0;
+    if (!updated) {
+        storeState(p, centre);
+        return;
+    }
+    int eye = min(p.x / pc.eyeWidth, pc.eyes - 1);  // eyeWidth >= 1 (pass clamps)
+    int x0 = eye * pc.eyeWidth;
+    int x1 = eye == pc.eyes - 1 ? pc.size.x : x0 + pc.eyeWidth;
+    vec3 np = texelFetch(normal, p, 0).xyz;
+    vec3 xp = texelFetch(position, p, 0).xyz;
+    // The normal term shrinks with the step (Dammertz's reference code); stepWidth >= 1.
+    float invN2 = pc.invSigmaNormal2 / float(pc.stepWidth * pc.stepWidth);
+
+    vec3 sum = vec3(0.0), plainSum = vec3(0.0);
+    float cum = 0.0, plainCum = 0.0;
+    for (int dy = -2; dy <= 2; ++dy) {
+        for (int dx = -2; dx <= 2; ++dx) {
+            ivec2 q = p + pc.stepWidth * ivec2(dx, dy);
+            if (q.x < x0 || q.x >= x1 || q.y < 0 || q.y >= pc.size.y) continue;
+            vec4 s = loadState(q);
+            if (s.a <= 0.5) continue;  // b(i, j) = 0: never sampled, not filled yet
+            float h = kB3[dx + 2] * kB3[dy + 2];
+            float w = 1.0;
+            // Without a centre value there is no colour to compare with: geometry only.
+            if (centreValid && pc.invSigmaColor2 > 0.0) {
+                vec3 d = centre.rgb - s.rgb;
+                w *= edgeWeight(dot(d, d), pc.invSigmaColor2);
+            }
+            if (pc.invSigmaNormal2 > 0.0) {
+                vec3 d = np - texelFetch(normal, q, 0).xyz;
+                w *= edgeWeight(dot(d, d), invN2);
+            }
+            if (pc.invSigmaPosition2 > 0.0) {
+                vec3 d = xp - texelFetch(position, q, 0).xyz;
+                w *= edgeWeight(dot(d, d), pc.invSigmaPosition2);
+            }
+            sum += s.rgb * (w * h);
+            cum += w * h;
+            plainSum += s.rgb * h;
+            plainCum += h;
+        }
+    }
+    vec4 result;
+    if (cum > 1e-30) result = vec4(sum / cum, 1.0);  // guarded division
+    else if (centreValid) result = centre;           // unreachable: the centre has w = 1
+    else if (plainCum > 0.0) result = vec4(plainSum / plainCum, 1.0);  // all weights underflowed
+    else result = centre;  // no valid tap: stays without a value (a later level fills it)
+    storeState(p, result);
+}

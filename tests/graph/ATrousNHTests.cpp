@@ -1,0 +1,392 @@
+// GPU tests of the ATrousNH pass (seed 000 §3.4, Eq. 2, Algorithm 1): the GPU output equals the
+// scalar CPU reference (tests/graph/ATrousReference) on random inputs and masks, mono 32x32 and
+// stereo 48x24; unsampled pixels never leak; no holes and no darkening with sparse masks; no tap
+// crosses the eye seam; one layer equals an independent classic à-trous; per-layer iteration
+// counts are respected. Inputs come from a no-op "Feed" pass whose persistent outputs the test
+// uploads before the frame.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "core/graph/GraphDesc.h"
+#include "core/graph/PassRegistry.h"
+#include "core/graph/RenderGraph.h"
+#include "core/vk/Resources.h"
+#include "passes/ATrousNH/ATrousNHPass.h"
+#include "tests/graph/ATrousReference.h"
+#include "tests/unit/GpuTestFixture.h"
+
+using namespace fovea;
+using namespace fovea::graph;
+using fovea::passes::ATrousDispatch;
+using fovea::passes::ATrousScheduleOptions;
+using fovea::passes::buildATrousSchedule;
+
+namespace {
+
+// Test-only source: declares the denoiser's inputs; the test uploads their content.
+class FeedPass : public Pass {
+public:
+    void reflect(Reflection& r) const override {
+        r.output("color", vk::Format::eR32G32B32A32Sfloat).persistent();
+        r.output("normal", vk::Format::eR16G16B16A16Sfloat).persistent();  // as GBuffer's
+        r.output("position", vk::Format::eR32G32B32A32Sfloat).persistent();
+        r.output("mask", vk::Format::eR32Uint).persistent();
+    }
+    void execute(ExecuteContext&) override {}
+};
+
+const PassRegistry& registry() {
+    static PassRegistry r = [] {
+        PassRegistry reg;
+        reg.add({"Feed", "", [] { return std::make_unique<FeedPass>(); }});
+        reg.add({"ATrousNH", "", [] { return std::make_unique<passes::ATrousNHPass>(); }});
+        return reg;
+    }();
+    return r;
+}
+
+struct Inputs {
+    int width = 0, height = 0;
+    std::vector<float> color, normal, position;
+    std::vector<uint32_t> mask;
+};
+
+// Concentric layers around each eye's centre (radii 0.2 / 0.4 of the eye height, like
+// FoveationMask), sampled with probability 1 / pMiddle / pOuter; random colours, unit normals
+// from a few planes and positions with jumps, so all three weights matter.
+Inputs randomInputs(int width, int height, int eyes, float pMiddle, float pOuter, uint32_t seed) {
+    Inputs in;
+    in.width = width;
+    in.height = height;
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const size_t n = size_t(width) * height;
+    in.color.resize(n * 4);
+    in.normal.resize(n * 4);
+    in.position.resize(n * 4);
+    in.mask.resize(n);
+    const int eyeWidth = width / eyes;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const size_t i = size_t(y) * width + x;
+            const int eye = std::min(x / eyeWidth, eyes - 1);
+            float cx = eye * eyeWidth + 0.5f * eyeWidth, cy = 0.5f * height;
+            float r = std::hypot(x + 0.5f - cx, y + 0.5f - cy) / float(height);
+            uint32_t layer = r < 0.2f ? 0u : (r < 0.4f ? 1u : 2u);
+            float p = layer == 0 ? 1.0f : (layer == 1 ? pMiddle : pOuter);
+            bool sampled = u(rng) < p;
+            in.mask[i] = (layer << 1) | (sampled ? (1u | (2u << 16)) : 0u);
+            for (int c = 0; c < 3; ++c) in.color[i * 4 + c] = sampled ? 2.0f * u(rng) : 0.0f;
+            in.color[i * 4 + 3] = sampled ? 2.0f : 0.0f;
+            int plane = (x / 7 + y / 5) % 3;
+            float nrm[3] = {plane == 0 ? 1.0f : 0.0f, plane == 1 ? 1.0f : 0.0f,
+                            plane == 2 ? 1.0f : 0.0f};
+            for (int c = 0; c < 3; ++c) in.normal[i * 4 + c] = nrm[c];
+            in.normal[i * 4 + 3] = 1.0f;
+            in.position[i * 4 + 0] = 0.05f * x + (plane == 1 ? 1.0f : 0.0f);
+            in.position[i * 4 + 1] = 0.05f * y;
+            in.position[i * 4 + 2] = 0.3f * u(rng);
+            in.position[i * 4 + 3] = 1.0f;
+        }
+    return in;
+}
+
+class ATrousNHTest : public GpuTest {
+protected:
+    // Builds Feed -> ATrousNH with `params` (a JSON object), uploads `in`, runs one frame and
+    // returns the denoised image. `useMask` / `useGeometry` decide which edges exist.
+    static std::vector<float> run(const Inputs& in, const std::string& params, bool useMask,
+                                  bool useGeometry = true,
+                                  std::vector<float>* normalUsed = nullptr) {
+        std::string edges = R"({ "from": "feed.color", "to": "dn.color" })";
+        if (useGeometry)
+            edges += R"(, { "from": "feed.normal", "to": "dn.normal" },
+                        { "from": "feed.position", "to": "dn.position" })";
+        if (useMask) edges += R"(, { "from": "feed.mask", "to": "dn.mask" })";
+        const std::string text =
+            R"({ "version": 1, "name": "atrous_nh_test", "passes": [ { "name": "feed", )"
+            R"("type": "Feed" }, { "name": "dn", "type": "ATrousNH", "params": )" +
+            params + R"( } ], "edges": [ )" + edges + R"( ], "outputs": [ "dn.denoised" ] })";
+        CompileOptions o;
+        o.width = uint32_t(in.width);
+        o.height = uint32_t(in.height);
+        RenderGraph g(ctx(), registry());
+        g.build(parseGraphText(text, "atrous_nh_test"), o);
+        // The graph hands out const images; these are ordinary (non-const) graph resources, and
+        // Feed never writes them, so the test fills them from the host before the frame.
+        auto target = [&](const char* name) -> gpu::Image& {
+            return const_cast<gpu::Image&>(g.image(name));
+        };
+        target("feed.color").uploadRGBA32F(ctx(), in.color);
+        if (useGeometry) {
+            target("feed.normal").uploadRGBA32F(ctx(), in.normal);
+            target("feed.position").uploadRGBA32F(ctx(), in.position);
+            // The reference must see the fp16-rounded normals the shader reads.
+            if (normalUsed) *normalUsed = g.image("feed.normal").downloadRGBA32F(ctx());
+        }
+        if (useMask)
+            target("feed.mask").upload(ctx(), in.mask.data(), in.mask.size() * sizeof(uint32_t));
+        g.runFrame();
+        return g.image("dn.denoised").downloadRGBA32F(ctx());
+    }
+
+    static testref::ATrousRefInput refInput(const Inputs& in, int eyes, int layers,
+                                            const ATrousScheduleOptions& so, bool useMask,
+                                            const std::vector<float>& normal) {
+        testref::ATrousRefInput r;
+        r.width = in.width;
+        r.height = in.height;
+        r.eyes = eyes;
+        r.layerCount = layers;
+        r.color = in.color;
+        r.normal = normal;
+        r.position = in.position;
+        if (useMask) r.mask = in.mask;
+        r.schedule = buildATrousSchedule(so);
+        return r;
+    }
+};
+
+::testing::AssertionResult near(const std::vector<float>& got, const std::vector<float>& want,
+                                float tolerance) {
+    if (got.size() != want.size())
+        return ::testing::AssertionFailure() << got.size() << " vs " << want.size() << " floats";
+    size_t bad = 0, first = 0;
+    for (size_t i = 0; i < got.size(); ++i)
+        if (!(std::fabs(got[i] - want[i]) <= tolerance) && bad++ == 0) first = i;
+    if (bad == 0) return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure()
+           << bad << " values differ; first: pixel " << first / 4 << " channel " << first % 4
+           << ": " << got[first] << " vs " << want[first];
+}
+
+ATrousScheduleOptions options(int layers, int m, int nn, int p, bool decreasing, bool perLayer,
+                              bool fill, int reach) {
+    ATrousScheduleOptions o;
+    o.layerCount = layers;
+    o.iterations[0] = m;
+    o.iterations[1] = nn;
+    o.iterations[2] = p;
+    o.decreasing = decreasing;
+    o.perLayer = perLayer;
+    o.fill = fill;
+    o.fillReach = reach;
+    return o;
+}
+
+}  // namespace
+
+// --- schedule (CPU) -----------------------------------------------------------------------------
+
+TEST(ATrousNHSchedule, PerLayerIterationCountsAndStepOrder) {
+    for (bool perLayer : {false, true})
+        for (bool decreasing : {false, true}) {
+            auto s = buildATrousSchedule(options(3, 2, 3, 5, decreasing, perLayer, false, 1));
+            const int want[3] = {2, 3, 5};
+            for (int l = 0; l < 3; ++l) {
+                std::vector<int> steps;
+                for (const ATrousDispatch& d : s)
+                    if ((d.layers >> l) & 1u) steps.push_back(d.step);
+                ASSERT_EQ(int(steps.size()), want[l]) << "layer " << l;
+                for (int j = 0; j < want[l]; ++j)  // Algorithm 1: 2^(n-1) .. 1, or reversed
+                    EXPECT_EQ(steps[j], 1 << (decreasing ? want[l] - 1 - j : j)) << "layer " << l;
+            }
+            EXPECT_EQ(s.size(), perLayer ? 10u : 5u);
+        }
+    // Fill levels reach the whole eye: radius 2 (2^(k+1) - 1) >= reach after the last one.
+    auto f = buildATrousSchedule(options(1, 0, 0, 0, true, false, true, 100));
+    ASSERT_FALSE(f.empty());
+    EXPECT_TRUE(f.back().fill);
+    EXPECT_GE(2 * (2 * f.back().step - 1), 100);
+    EXPECT_LT(2 * (f.back().step - 1), 100);  // and not one level more than needed
+    // Nothing to do is still one (copy) dispatch, so the output is always written.
+    EXPECT_EQ(buildATrousSchedule(options(2, 0, 0, 0, true, false, false, 1)).size(), 1u);
+}
+
+// --- GPU = CPU reference ------------------------------------------------------------------------
+
+TEST_F(ATrousNHTest, MatchesReferenceMonoThreeLayersDecreasing) {
+    Inputs in = randomInputs(32, 32, 1, 0.5f, 0.25f, 11);
+    std::vector<float> normal;
+    auto got = run(in,
+                   R"({ "layers": 3, "iterations0": 1, "iterations1": 2, "iterations2": 3,
+                        "eyes": 1 })",
+                   true, true, &normal);
+    auto want = testref::atrousReference(
+        refInput(in, 1, 3, options(3, 1, 2, 3, true, false, true, 32), true, normal));
+    EXPECT_TRUE(near(got, want, 1e-4f));
+}
+
+TEST_F(ATrousNHTest, MatchesReferenceStereoPerLayerIncreasing) {
+    Inputs in = randomInputs(48, 24, 2, 0.4f, 0.2f, 12);
+    std::vector<float> normal;
+    auto got = run(in,
+                   R"({ "layers": 3, "iterations0": 1, "iterations1": 2, "iterations2": 3,
+                        "eyes": 2, "stepOrder": "increasing", "schedule": "layers",
+                        "sigmaColor": 0.7, "sigmaNormal": 0.5, "sigmaPosition": 0.3 })",
+                   true, true, &normal);
+    auto r = refInput(in, 2, 3, options(3, 1, 2, 3, false, true, true, 24), true, normal);
+    r.sigmaColor = 0.7f;
+    r.sigmaNormal = 0.5f;
+    r.sigmaPosition = 0.3f;
+    EXPECT_TRUE(near(got, testref::atrousReference(r), 1e-4f));
+}
+
+// --- properties ---------------------------------------------------------------------------------
+
+TEST_F(ATrousNHTest, UnsampledPixelsNeverLeak) {
+    Inputs in = randomInputs(48, 24, 2, 0.5f, 0.25f, 13);
+    const std::string params =
+        R"({ "layers": 3, "iterations0": 1, "iterations1": 2, "iterations2": 3, "eyes": 2 })";
+    auto clean = run(in, params, true);
+    Inputs poisoned = in;
+    size_t count = 0;
+    for (size_t i = 0; i < in.mask.size(); ++i)
+        if (!(in.mask[i] & 1u)) {
+            ++count;
+            for (int c = 0; c < 4; ++c) poisoned.color[i * 4 + c] = 1e6f;
+        }
+    ASSERT_GT(count, 100u);
+    EXPECT_TRUE(near(run(in, params, true), clean, 0.0f));  // deterministic
+    EXPECT_TRUE(near(run(poisoned, params, true), clean, 0.0f));
+}
+
+TEST_F(ATrousNHTest, NoHolesAndNoDarkeningWithSparseMask) {
+    // 3% of the periphery sampled, one iteration per layer: most pixels have no sampled tap in
+    // reach of the iterations; the fill levels must still give every pixel a value, and a
+    // constant image must stay that constant (unsampled pixels do not count as black).
+    Inputs in = randomInputs(48, 24, 2, 0.03f, 0.03f, 14);
+    for (size_t i = 0; i < in.mask.size(); ++i)
+        if (in.mask[i] & 1u)
+            in.color[i * 4 + 0] = in.color[i * 4 + 1] = in.color[i * 4 + 2] = 0.75f;
+    auto got = run(in, R"({ "layers": 3, "iterations0": 1, "iterations1": 1, "iterations2": 1,
+                            "eyes": 2 })",
+                   true);
+    for (size_t i = 0; i < got.size() / 4; ++i) {
+        ASSERT_EQ(got[i * 4 + 3], 1.0f) << "pixel " << i << " has no value";
+        for (int c = 0; c < 3; ++c) ASSERT_NEAR(got[i * 4 + c], 0.75f, 1e-5f) << "pixel " << i;
+    }
+    // Without the fill levels holes remain (so the test above can fail).
+    auto holes = run(in, R"({ "layers": 3, "iterations0": 1, "iterations1": 1, "iterations2": 1,
+                              "eyes": 2, "fill": false })",
+                     true);
+    size_t empty = 0;
+    for (size_t i = 0; i < holes.size() / 4; ++i) empty += holes[i * 4 + 3] == 0.0f;
+    EXPECT_GT(empty, 0u);
+}
+
+TEST_F(ATrousNHTest, SparseRandomColoursFiniteAndMatchReference) {
+    Inputs in = randomInputs(48, 24, 2, 0.05f, 0.02f, 15);
+    std::vector<float> normal;
+    auto got = run(in, R"({ "layers": 3, "iterations0": 1, "iterations1": 2, "iterations2": 2,
+                            "eyes": 2 })",
+                   true, true, &normal);
+    for (float v : got) ASSERT_TRUE(std::isfinite(v));
+    for (size_t i = 0; i < got.size() / 4; ++i) ASSERT_EQ(got[i * 4 + 3], 1.0f);
+    auto want = testref::atrousReference(
+        refInput(in, 2, 3, options(3, 1, 2, 2, true, false, true, 24), true, normal));
+    EXPECT_TRUE(near(got, want, 1e-4f));
+}
+
+TEST_F(ATrousNHTest, NoTapCrossesTheEyeSeam) {
+    // Left eye 0, right eye 10, no edge weights: any cross-seam tap would mix them.
+    Inputs in = randomInputs(48, 24, 2, 1.0f, 1.0f, 16);
+    for (int y = 0; y < 24; ++y)
+        for (int x = 0; x < 48; ++x)
+            for (int c = 0; c < 4; ++c)
+                in.color[(size_t(y) * 48 + x) * 4 + c] = c == 3 ? 1.0f : (x < 24 ? 0.0f : 10.0f);
+    auto got = run(in, R"({ "iterations0": 5, "eyes": 2, "sigmaColor": 0 })", false, false);
+    for (int y = 0; y < 24; ++y)
+        for (int x = 0; x < 48; ++x)
+            ASSERT_NEAR(got[(size_t(y) * 48 + x) * 4], x < 24 ? 0.0f : 10.0f, 1e-4f)
+                << x << "," << y;  // one leaked tap would move it by >= 10/256
+    // With one eye the same image does blur across the middle (the check above can fail).
+    auto mono = run(in, R"({ "iterations0": 5, "eyes": 1, "sigmaColor": 0 })", false, false);
+    EXPECT_GT(mono[(size_t(12) * 48 + 23) * 4], 0.1f);
+}
+
+// Dammertz et al. 2010 written out directly: full screen, every pixel valid, no mask or layers.
+std::vector<float> classicATrous(const Inputs& in, const std::vector<float>& normal, int iterations,
+                                 bool decreasing, float sc, float sn, float sx) {
+    const float k[5] = {1.0f / 16, 1.0f / 4, 3.0f / 8, 1.0f / 4, 1.0f / 16};
+    const int w = in.width, h = in.height;
+    std::vector<float> c = in.color, next(c.size());
+    auto d2 = [](const float* a, const float* b) {
+        return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+               (a[2] - b[2]) * (a[2] - b[2]);
+    };
+    for (int it = 0; it < iterations; ++it) {
+        int step = 1 << (decreasing ? iterations - 1 - it : it);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                size_t i = size_t(y) * w + x;
+                float sum[3] = {0, 0, 0}, cum = 0;
+                for (int dy = -2; dy <= 2; ++dy)
+                    for (int dx = -2; dx <= 2; ++dx) {
+                        int qx = x + step * dx, qy = y + step * dy;
+                        if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+                        size_t j = size_t(qy) * w + qx;
+                        float wt =
+                            std::exp(-d2(&c[i * 4], &c[j * 4]) / (sc * sc)) *
+                            std::exp(-d2(&normal[i * 4], &normal[j * 4]) /
+                                     (float(step * step) * sn * sn)) *
+                            std::exp(-d2(&in.position[i * 4], &in.position[j * 4]) / (sx * sx)) *
+                            k[dx + 2] * k[dy + 2];
+                        for (int ch = 0; ch < 3; ++ch) sum[ch] += c[j * 4 + ch] * wt;
+                        cum += wt;
+                    }
+                for (int ch = 0; ch < 3; ++ch) next[i * 4 + ch] = sum[ch] / cum;  // cum > 0
+                next[i * 4 + 3] = 1.0f;
+            }
+        c.swap(next);
+    }
+    return c;
+}
+
+TEST_F(ATrousNHTest, OneLayerEqualsClassicATrous) {
+    Inputs in = randomInputs(32, 32, 1, 1.0f, 1.0f, 17);  // every pixel sampled
+    for (bool decreasing : {true, false}) {
+        const std::string order = decreasing ? "decreasing" : "increasing";
+        const std::string params =
+            R"({ "layers": 1, "iterations0": 4, "eyes": 1, "stepOrder": ")" + order + R"(" })";
+        std::vector<float> normal;
+        auto got = run(in, params, false, true, &normal);
+        auto classic = classicATrous(in, normal, 4, decreasing, 1.0f, 0.2f, 0.5f);
+        EXPECT_TRUE(near(got, classic, 1e-4f)) << order;
+        // A connected mask with every pixel sampled changes nothing in one-layer mode, whatever
+        // its layer ids.
+        EXPECT_TRUE(near(run(in, params, true), got, 0.0f)) << order;
+    }
+}
+
+TEST_F(ATrousNHTest, LayerIterationCountsRespected) {
+    // Layer 1 has 0 iterations and no fill: its pixels keep their input exactly, while layers 0
+    // and 2 (1 and 3 iterations) change; and the output matches the reference for these counts.
+    Inputs in = randomInputs(32, 32, 1, 1.0f, 1.0f, 18);
+    std::vector<float> normal;
+    auto got = run(in, R"({ "layers": 3, "iterations0": 1, "iterations1": 0, "iterations2": 3,
+                            "eyes": 1, "fill": false })",
+                   true, true, &normal);
+    size_t changed[3] = {0, 0, 0}, total[3] = {0, 0, 0};
+    for (size_t i = 0; i < in.mask.size(); ++i) {
+        int layer = int((in.mask[i] >> 1) & 3u);
+        ++total[layer];
+        bool same = true;
+        for (int c = 0; c < 3; ++c) same = same && got[i * 4 + c] == in.color[i * 4 + c];
+        changed[layer] += !same;
+    }
+    ASSERT_GT(total[1], 0u);
+    EXPECT_EQ(changed[1], 0u);
+    EXPECT_GT(changed[0], total[0] / 2);
+    EXPECT_GT(changed[2], total[2] / 2);
+    auto want = testref::atrousReference(
+        refInput(in, 1, 3, options(3, 1, 0, 3, true, false, false, 32), true, normal));
+    EXPECT_TRUE(near(got, want, 1e-4f));
+}
