@@ -31,7 +31,8 @@ void registerBuiltinPasses() {
         "Accumulate",
         "Per-pixel running mean over frames, restarted on reset: converged references."));
     r.add(info<passes::CombinePass>(
-        "Combine", "Weighted sum of two images (b optional, may be delayed): blends, differences."));
+        "Combine",
+        "Weighted sum of two images (b optional, may be delayed): blends, differences."));
     r.add(info<passes::BlitPass>(
         "Blit", "Resample to a scaled size / other format; optional every-N-th-frame bypass."));
     r.add(info<passes::PathTracePass>(

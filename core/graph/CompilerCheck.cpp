@@ -64,8 +64,7 @@ std::string kindList(const Reflection& r, FieldKind kind) {
 
 // The field an endpoint names, with errors for unknown fields and wrong direction.
 const FieldDesc& endpointField(const CompiledPlan& plan, const std::string& file,
-                               const std::string& pointer, const Endpoint& ep,
-                               FieldKind wanted) {
+                               const std::string& pointer, const Endpoint& ep, FieldKind wanted) {
     size_t n = plan.findNode(ep.pass);
     if (n == kNone) throw InputError(file, pointer, "unknown pass '" + ep.pass + "'");
     const PassNode& node = plan.nodes[n];
@@ -80,12 +79,13 @@ const FieldDesc& endpointField(const CompiledPlan& plan, const std::string& file
     }
     if (f->kind != wanted) {
         if (f->kind == FieldKind::Internal)
-            throw InputError(file, pointer,
-                             "'" + ep.str() + "' is internal to pass '" + ep.pass +
-                                 "' and cannot be connected");
+            throw InputError(
+                file, pointer,
+                "'" + ep.str() + "' is internal to pass '" + ep.pass + "' and cannot be connected");
         throw InputError(file, pointer,
                          "edge direction wrong: '" + ep.str() + "' is an " +
-                             fieldKindName(f->kind) + ", but edges go from an output ('from') to "
+                             fieldKindName(f->kind) +
+                             ", but edges go from an output ('from') to "
                              "an input ('to')");
     }
     return *f;
@@ -112,7 +112,8 @@ void checkEdges(const GraphDesc& desc, CompiledPlan& plan) {
             throw InputError(file, e.pointer,
                              "kind mismatch: '" + e.from.str() + "' is " +
                                  (from.isImage() ? "an image" : "a buffer") + " but '" +
-                                 e.to.str() + "' expects " + (to.isImage() ? "an image" : "a buffer"));
+                                 e.to.str() + "' expects " +
+                                 (to.isImage() ? "an image" : "a buffer"));
         if (to.format != vk::Format::eUndefined && from.format != to.format)
             throw InputError(file, e.pointer,
                              "format mismatch: '" + e.from.str() + "' is " +
@@ -149,10 +150,11 @@ void checkEdges(const GraphDesc& desc, CompiledPlan& plan) {
         for (const FieldDesc& f : node.reflection.fields()) {
             if (f.kind != FieldKind::Input || f.optional) continue;
             if (!plan.inputs.count({n, f.name}))
-                throw InputError(file, node.pointer,
-                                 "missing required input: '" + node.name + "." + f.name +
-                                     "' has no edge (add {\"from\": \"<pass>.<output>\", \"to\": \"" +
-                                     node.name + "." + f.name + "\"})");
+                throw InputError(
+                    file, node.pointer,
+                    "missing required input: '" + node.name + "." + f.name +
+                        "' has no edge (add {\"from\": \"<pass>.<output>\", \"to\": \"" +
+                        node.name + "." + f.name + "\"})");
         }
     }
 
@@ -162,7 +164,8 @@ void checkEdges(const GraphDesc& desc, CompiledPlan& plan) {
         if (src.delay == 0)
             next[src.node].push_back({key.first, src.node == kNone ? "" : src.pointer});
     for (size_t i = 0; i < plan.orderEdges.size(); ++i)
-        next[plan.orderEdges[i].first].push_back({plan.orderEdges[i].second, desc.order[i].pointer});
+        next[plan.orderEdges[i].first].push_back(
+            {plan.orderEdges[i].second, desc.order[i].pointer});
     std::vector<int> colour(plan.nodes.size(), 0);
     std::vector<size_t> stack;
     std::function<void(size_t)> visit = [&](size_t n) {

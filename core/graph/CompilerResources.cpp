@@ -11,10 +11,14 @@ namespace fovea::graph {
 
 const char* lifetimeName(Lifetime l) {
     switch (l) {
-        case Lifetime::Transient: return "transient";
-        case Lifetime::Output: return "output";
-        case Lifetime::History: return "history";
-        case Lifetime::Persistent: return "persistent";
+        case Lifetime::Transient:
+            return "transient";
+        case Lifetime::Output:
+            return "output";
+        case Lifetime::History:
+            return "history";
+        case Lifetime::Persistent:
+            return "persistent";
     }
     return "?";
 }
@@ -48,11 +52,12 @@ uint64_t CompiledPlan::persistentBytes() const {
 
 namespace {
 
-std::string sizeText(uint32_t w, uint32_t h) { return std::to_string(w) + "x" + std::to_string(h); }
+std::string sizeText(uint32_t w, uint32_t h) {
+    return std::to_string(w) + "x" + std::to_string(h);
+}
 
 // The size a field's rule asks for, or false when it depends on an unresolved input.
-bool ruleSize(const CompiledPlan& plan, size_t node, const FieldDesc& f, uint32_t& w,
-              uint32_t& h) {
+bool ruleSize(const CompiledPlan& plan, size_t node, const FieldDesc& f, uint32_t& w, uint32_t& h) {
     const CompileOptions& o = plan.options;
     switch (f.size) {
         case SizeRule::Any:
@@ -83,7 +88,9 @@ bool ruleSize(const CompiledPlan& plan, size_t node, const FieldDesc& f, uint32_
             h = plan.resources[res->second].height;
             return true;
         }
-        case SizeRule::Buffer: w = h = 0; return true;
+        case SizeRule::Buffer:
+            w = h = 0;
+            return true;
     }
     return false;
 }
@@ -162,13 +169,12 @@ void resolveResources(CompiledPlan& plan) {
         if (f.isImage() && f.size != SizeRule::Any) {
             uint32_t w = 0, h = 0;
             if (ruleSize(plan, n, f, w, h) && (w != r.width || h != r.height))
-                throw InputError(plan.file, src.pointer,
-                                 "size mismatch: '" + r.name + "' is " +
-                                     sizeText(r.width, r.height) + " but '" + plan.nodes[n].name +
-                                     "." + field + "' expects " + sizeText(w, h) + " (" +
-                                     sizeRuleName(f.size) +
-                                     (f.size == SizeRule::SameAsInput ? " '" + f.sameAs + "'" : "") +
-                                     ")");
+                throw InputError(
+                    plan.file, src.pointer,
+                    "size mismatch: '" + r.name + "' is " + sizeText(r.width, r.height) + " but '" +
+                        plan.nodes[n].name + "." + field + "' expects " + sizeText(w, h) + " (" +
+                        sizeRuleName(f.size) +
+                        (f.size == SizeRule::SameAsInput ? " '" + f.sameAs + "'" : "") + ")");
         }
         if (src.delay > 0) {
             r.lifetime = Lifetime::History;

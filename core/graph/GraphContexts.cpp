@@ -10,7 +10,9 @@
 
 namespace fovea::graph {
 
-gpu::Context& GraphCompileContext::gpu() { return mGraph.gpu(); }
+gpu::Context& GraphCompileContext::gpu() {
+    return mGraph.gpu();
+}
 
 ResourceExtent GraphCompileContext::extent(const std::string& field) const {
     size_t resource = kNone;
@@ -42,7 +44,8 @@ std::unique_ptr<gpu::ComputePipeline> GraphCompileContext::createPipeline(
         if (mGraph.scene() && b.name.rfind("scene_", 0) == 0) continue;
         if (b.name == "camera_info") continue;  // bound by bindFields from the graph's camera
         std::string fields;
-        for (const auto& f : node.reflection.fields()) fields += (fields.empty() ? "" : ", ") + f.name;
+        for (const auto& f : node.reflection.fields())
+            fields += (fields.empty() ? "" : ", ") + f.name;
         throw RuntimeError("pass '" + node.name + "' (" + node.type + "): shader '" + shaderPath +
                            "' expects resource '" + b.name + "' but the pass has no such field" +
                            didYouMean(b.name, names) + " (fields: " + fields + ")");
@@ -50,11 +53,19 @@ std::unique_ptr<gpu::ComputePipeline> GraphCompileContext::createPipeline(
     return pipeline;
 }
 
-const scene::SceneGpu* GraphCompileContext::scene() const { return mGraph.scene(); }
+const scene::SceneGpu* GraphCompileContext::scene() const {
+    return mGraph.scene();
+}
 
-gpu::Context& GraphExecuteContext::gpu() { return mGraph.gpu(); }
-const scene::SceneGpu* GraphExecuteContext::scene() const { return mGraph.scene(); }
-const scene::FrameCamera& GraphExecuteContext::camera() const { return mGraph.camera(); }
+gpu::Context& GraphExecuteContext::gpu() {
+    return mGraph.gpu();
+}
+const scene::SceneGpu* GraphExecuteContext::scene() const {
+    return mGraph.scene();
+}
+const scene::FrameCamera& GraphExecuteContext::camera() const {
+    return mGraph.camera();
+}
 
 bool GraphExecuteContext::connected(const std::string& input) const {
     return mPlan.inputs.count({mNode, input}) > 0;

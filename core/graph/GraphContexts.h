@@ -16,7 +16,8 @@ public:
     ResourceExtent extent(const std::string& field) const override;
     bool connected(const std::string& input) const override;
     std::unique_ptr<gpu::ComputePipeline> createPipeline(
-        const std::string& shaderPath, const std::vector<std::pair<std::string, std::string>>& defines,
+        const std::string& shaderPath,
+        const std::vector<std::pair<std::string, std::string>>& defines,
         const std::vector<std::string>& extraResources) override;
     const scene::SceneGpu* scene() const override;
 

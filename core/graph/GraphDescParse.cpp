@@ -14,7 +14,7 @@ namespace {
 const std::vector<std::string> kTopFields = {
     "version", "name", "description", "defaults", "passes", "edges", "order", "outputs", "editor"};
 const std::vector<std::string> kDefaultsFields = {"size",  "frames", "seed",
-                                                   "scene", "camera", "stereo"};
+                                                  "scene", "camera", "stereo"};
 const std::vector<std::string> kPassFields = {"name", "type", "params", "enabled"};
 const std::vector<std::string> kEdgeFields = {"from", "to", "delay"};
 const std::vector<std::string> kOrderFields = {"before", "after"};

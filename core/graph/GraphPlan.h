@@ -29,10 +29,10 @@ struct PassNode {
 
 // Where an input of a pass gets its data.
 struct InputSource {
-    size_t node = kNone;  // producing node
-    std::string field;    // producing output
-    uint32_t delay = 0;   // frames of delay (0 = this frame)
-    std::string pointer;  // "/edges/i"
+    size_t node = kNone;      // producing node
+    std::string field;        // producing output
+    uint32_t delay = 0;       // frames of delay (0 = this frame)
+    std::string pointer;      // "/edges/i"
     size_t resource = kNone;  // filled by resolveResources
 };
 
@@ -48,20 +48,20 @@ struct ResourcePlan {
     vk::Format format = vk::Format::eUndefined;
     uint64_t bufferBytes = 0;
     Lifetime lifetime = Lifetime::Transient;
-    uint32_t ringSize = 1;  // history: max delay + 1
+    uint32_t ringSize = 1;            // history: max delay + 1
     int firstUse = -1, lastUse = -1;  // positions in the execution order
     int aliasGroup = -1;
     uint64_t bytes() const;  // estimated size (images: w*h*bytes per pixel)
 };
 
 struct AliasGroup {
-    uint64_t bytes = 0;  // estimate: the largest member
+    uint64_t bytes = 0;           // estimate: the largest member
     std::vector<size_t> members;  // resources, in order of first use
 };
 
 struct BarrierPlan {
-    int position = 0;  // before the pass at this order position
-    std::vector<size_t> initialize;  // aliased images first written here: UNDEFINED -> GENERAL
+    int position = 0;                  // before the pass at this order position
+    std::vector<size_t> initialize;    // aliased images first written here: UNDEFINED -> GENERAL
     std::vector<std::string> hazards;  // why the barrier exists ("RAW tm.input <- src.color")
 };
 
@@ -74,11 +74,11 @@ struct CompileOptions {
 struct CompiledPlan {
     std::string file;
     CompileOptions options;
-    std::vector<PassNode> nodes;  // in graph-file order
+    std::vector<PassNode> nodes;                                   // in graph-file order
     std::map<std::pair<size_t, std::string>, InputSource> inputs;  // (node, input) -> source
-    std::vector<std::pair<size_t, size_t>> orderEdges;  // before, after (node indices)
-    std::vector<std::pair<size_t, std::string>> outputs;  // marked outputs (node, field)
-    std::vector<size_t> order;  // alive nodes, execution order
+    std::vector<std::pair<size_t, size_t>> orderEdges;             // before, after (node indices)
+    std::vector<std::pair<size_t, std::string>> outputs;           // marked outputs (node, field)
+    std::vector<size_t> order;                                     // alive nodes, execution order
     std::vector<ResourcePlan> resources;
     std::map<std::pair<size_t, std::string>, size_t> resourceOf;  // (node, output/internal)
     std::vector<AliasGroup> aliasGroups;
@@ -86,9 +86,9 @@ struct CompiledPlan {
 
     size_t findNode(const std::string& name) const;
     int positionOf(size_t node) const;  // -1 if not ordered (culled)
-    uint64_t transientBytes() const;              // with aliasing
+    uint64_t transientBytes() const;    // with aliasing
     uint64_t transientBytesWithoutAliasing() const;
-    uint64_t persistentBytes() const;             // outputs, history rings, persistent
+    uint64_t persistentBytes() const;  // outputs, history rings, persistent
 };
 
 }  // namespace fovea::graph

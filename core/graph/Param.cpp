@@ -54,8 +54,7 @@ public:
     }
     void visit(const ParamSpec& s, int& v, int) override {
         if (const json* j = take(s.name)) {
-            if (!j->is_number_integer())
-                fail(s.name, "expected an integer, got " + describe(*j));
+            if (!j->is_number_integer()) fail(s.name, "expected an integer, got " + describe(*j));
             // Compare as double first so values beyond int range are reported, not wrapped.
             double d = j->get<double>();
             checkRange(s, d);
@@ -83,8 +82,8 @@ public:
                 std::find(s.choices.begin(), s.choices.end(), value) == s.choices.end()) {
                 std::string list;
                 for (const auto& c : s.choices) list += (list.empty() ? "" : ", ") + c;
-                fail(s.name, "'" + value + "' is not one of: " + list +
-                                 didYouMean(value, s.choices));
+                fail(s.name,
+                     "'" + value + "' is not one of: " + list + didYouMean(value, s.choices));
             }
             v = value;
         }
@@ -116,11 +115,10 @@ public:
             std::string hint = didYouMean(key, mDeclared);
             std::string list;
             for (const auto& d : mDeclared) list += (list.empty() ? "" : ", ") + d;
-            throw InputError(mFile, mPointer + "/" + key,
-                             "unknown parameter '" + key + "'" + hint +
-                                 (hint.empty() ? " (parameters: " +
-                                                     (list.empty() ? "none" : list) + ")"
-                                               : ""));
+            throw InputError(
+                mFile, mPointer + "/" + key,
+                "unknown parameter '" + key + "'" + hint +
+                    (hint.empty() ? " (parameters: " + (list.empty() ? "none" : list) + ")" : ""));
         }
     }
 
@@ -214,8 +212,8 @@ void applyParamDefaults(Pass& pass) {
 void loadParams(Pass& pass, const nlohmann::json& params, const std::string& file,
                 const std::string& pointer) {
     if (!params.is_object())
-        throw InputError(file, pointer, "expected an object of parameters, got " +
-                                            jsonTypeName(params));
+        throw InputError(file, pointer,
+                         "expected an object of parameters, got " + jsonTypeName(params));
     LoadVisitor v(params, file, pointer);
     pass.params(v);
     v.checkUnknown();
@@ -242,9 +240,9 @@ nlohmann::json parseParamText(Pass& pass, const std::string& param, const std::s
         if (p["name"] == param) type = p["type"];
     }
     if (type.empty())
-        throw InputError(flag, "", "pass '" + pass.name() + "' (" + pass.type() +
-                                       ") has no parameter '" + param + "'" +
-                                       didYouMean(param, names));
+        throw InputError(flag, "",
+                         "pass '" + pass.name() + "' (" + pass.type() + ") has no parameter '" +
+                             param + "'" + didYouMean(param, names));
     if (type == "string") return text;
     // Numbers, booleans and vectors are written as JSON ("2", "true", "[1,0,0]"); a parse
     // failure is reported against the flag, and the type check happens in loadParams.

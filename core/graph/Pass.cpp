@@ -3,8 +3,7 @@
 namespace fovea::graph {
 
 std::vector<std::string> sceneFeatureNames(uint32_t mask) {
-    static const char* kNames[] = {"geometry", "emissive", "textures", "punctual-lights",
-                                   "stereo"};
+    static const char* kNames[] = {"geometry", "emissive", "textures", "punctual-lights", "stereo"};
     std::vector<std::string> out;
     for (uint32_t i = 0; i < 5; ++i)
         if (mask & (1u << i)) out.push_back(kNames[i]);

@@ -5,10 +5,10 @@
 #pragma once
 #include <cstdint>
 #include <memory>
-#include <vulkan/vulkan_raii.hpp>
 #include <string>
 #include <utility>
 #include <vector>
+#include <vulkan/vulkan_raii.hpp>
 
 #include "core/graph/Param.h"
 #include "core/graph/Reflection.h"
@@ -32,11 +32,11 @@ namespace fovea::graph {
 // Scene features a pass can require. A pass whose needs the loaded scene does not meet is culled
 // (with a reason) instead of running on missing data.
 enum SceneFeature : uint32_t {
-    kSceneGeometry = 1u << 0,   // any triangles at all (a scene was loaded)
-    kSceneEmissive = 1u << 1,   // emissive triangles
-    kSceneTextures = 1u << 2,   // textured materials
-    kScenePunctual = 1u << 3,   // point/spot/directional lights
-    kSceneStereo = 1u << 4,     // a stereo camera rig
+    kSceneGeometry = 1u << 0,  // any triangles at all (a scene was loaded)
+    kSceneEmissive = 1u << 1,  // emissive triangles
+    kSceneTextures = 1u << 2,  // textured materials
+    kScenePunctual = 1u << 3,  // point/spot/directional lights
+    kSceneStereo = 1u << 4,    // a stereo camera rig
 };
 std::vector<std::string> sceneFeatureNames(uint32_t mask);
 

@@ -20,8 +20,7 @@ std::vector<std::string> PassRegistry::types() const {
     return out;
 }
 
-std::unique_ptr<Pass> PassRegistry::create(const std::string& type,
-                                           const std::string& name) const {
+std::unique_ptr<Pass> PassRegistry::create(const std::string& type, const std::string& name) const {
     const PassTypeInfo* info = find(type);
     if (!info) throw std::logic_error("unknown pass type " + type);
     std::unique_ptr<Pass> pass = info->create();

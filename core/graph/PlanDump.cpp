@@ -26,9 +26,12 @@ nlohmann::json dumpPlanJson(const CompiledPlan& plan) {
     j["order"] = order;
     json resources = json::array();
     for (const auto& r : plan.resources) {
-        json jr = {{"name", r.name},           {"lifetime", lifetimeName(r.lifetime)},
-                   {"first_use", r.firstUse},  {"last_use", r.lastUse},
-                   {"alias_group", r.aliasGroup}, {"ring", r.ringSize},
+        json jr = {{"name", r.name},
+                   {"lifetime", lifetimeName(r.lifetime)},
+                   {"first_use", r.firstUse},
+                   {"last_use", r.lastUse},
+                   {"alias_group", r.aliasGroup},
+                   {"ring", r.ringSize},
                    {"bytes", r.bytes()}};
         if (r.isImage) {
             jr["size"] = {r.width, r.height};

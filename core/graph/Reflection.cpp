@@ -43,21 +43,30 @@ std::vector<std::string> Reflection::names(FieldKind kind) const {
 
 const char* fieldKindName(FieldKind kind) {
     switch (kind) {
-        case FieldKind::Input: return "input";
-        case FieldKind::Output: return "output";
-        case FieldKind::Internal: return "internal";
+        case FieldKind::Input:
+            return "input";
+        case FieldKind::Output:
+            return "output";
+        case FieldKind::Internal:
+            return "internal";
     }
     return "?";
 }
 
 const char* sizeRuleName(SizeRule rule) {
     switch (rule) {
-        case SizeRule::Any: return "any";
-        case SizeRule::Screen: return "screen";
-        case SizeRule::Scaled: return "scaled";
-        case SizeRule::Fixed: return "fixed";
-        case SizeRule::SameAsInput: return "same-as-input";
-        case SizeRule::Buffer: return "buffer";
+        case SizeRule::Any:
+            return "any";
+        case SizeRule::Screen:
+            return "screen";
+        case SizeRule::Scaled:
+            return "scaled";
+        case SizeRule::Fixed:
+            return "fixed";
+        case SizeRule::SameAsInput:
+            return "same-as-input";
+        case SizeRule::Buffer:
+            return "buffer";
     }
     return "?";
 }

@@ -1,9 +1,9 @@
 #include "core/graph/RenderGraph.h"
-#include "core/graph/RuntimeResource.h"
 
 #include <chrono>
 
 #include "core/graph/GraphContexts.h"
+#include "core/graph/RuntimeResource.h"
 #include "core/scene/Camera.h"
 #include "core/scene/CameraGpu.h"
 #include "core/util/Error.h"
@@ -13,7 +13,6 @@
 #include "core/vk/Timestamps.h"
 
 namespace fovea::graph {
-
 
 namespace {
 std::string historyKey(const ResourcePlan& r) {
@@ -32,11 +31,16 @@ gpu::ImageDesc imageDesc(const ResourcePlan& r) {
 
 const char* passStatusName(PassStatus s) {
     switch (s) {
-        case PassStatus::Executed: return "executed";
-        case PassStatus::Culled: return "culled";
-        case PassStatus::Skipped: return "skipped";
-        case PassStatus::Cached: return "cached";
-        case PassStatus::Bypassed: return "bypassed";
+        case PassStatus::Executed:
+            return "executed";
+        case PassStatus::Culled:
+            return "culled";
+        case PassStatus::Skipped:
+            return "skipped";
+        case PassStatus::Cached:
+            return "cached";
+        case PassStatus::Bypassed:
+            return "bypassed";
     }
     return "?";
 }
@@ -44,13 +48,13 @@ const char* passStatusName(PassStatus s) {
 RenderGraph::RenderGraph(gpu::Context& gpu, const PassRegistry& registry)
     : mGpu(gpu), mRegistry(registry), mCamera(std::make_unique<scene::FrameCamera>()) {
     const auto& device = mGpu.device();
-    mCameraBuffer = std::make_unique<gpu::Buffer>(
-        mGpu, sizeof(scene::layout::CameraInfo), vk::BufferUsageFlagBits::eUniformBuffer, true,
-        "camera_info");
+    mCameraBuffer =
+        std::make_unique<gpu::Buffer>(mGpu, sizeof(scene::layout::CameraInfo),
+                                      vk::BufferUsageFlagBits::eUniformBuffer, true, "camera_info");
     mCommandPool = std::make_unique<vk::raii::CommandPool>(
-        device, vk::CommandPoolCreateInfo{
-                    .flags = vk::CommandPoolCreateFlagBits::eResetCommandBuffer,
-                    .queueFamilyIndex = mGpu.queueFamily()});
+        device,
+        vk::CommandPoolCreateInfo{.flags = vk::CommandPoolCreateFlagBits::eResetCommandBuffer,
+                                  .queueFamilyIndex = mGpu.queueFamily()});
     vk::raii::CommandBuffers buffers(
         device, vk::CommandBufferAllocateInfo{.commandPool = **mCommandPool,
                                               .level = vk::CommandBufferLevel::ePrimary,
@@ -253,7 +257,9 @@ bool RenderGraph::historyValidFor(size_t node, const std::string& input) const {
 const gpu::Image& RenderGraph::dummyImage(vk::Format format) {
     if (format == vk::Format::eUndefined) format = vk::Format::eR32G32B32A32Sfloat;
     auto& slot = mDummies[format];
-    if (!slot) slot = std::make_unique<gpu::Image>(mGpu, gpu::ImageDesc{.width = 1, .height = 1, .format = format, .debugName = "dummy"});
+    if (!slot)
+        slot = std::make_unique<gpu::Image>(
+            mGpu, gpu::ImageDesc{.width = 1, .height = 1, .format = format, .debugName = "dummy"});
     return *slot;
 }
 

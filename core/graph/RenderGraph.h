@@ -36,10 +36,10 @@ struct PassRecord {
 };
 
 struct FrameTiming {
-    double gpuMs = 0;          // first to last timestamp of the frame
-    double recordCpuMs = 0;    // CPU time recording the command buffer (all passes)
-    double passCpuMs = 0;      // of which inside Pass::execute
-    double submitWaitMs = 0;   // submit + wait for the fence
+    double gpuMs = 0;         // first to last timestamp of the frame
+    double recordCpuMs = 0;   // CPU time recording the command buffer (all passes)
+    double passCpuMs = 0;     // of which inside Pass::execute
+    double submitWaitMs = 0;  // submit + wait for the fence
 };
 
 struct RuntimeResource;  // defined in RenderGraph.cpp

@@ -13,7 +13,6 @@
 
 namespace fovea::graph {
 
-
 namespace {
 using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t) {
@@ -33,8 +32,7 @@ uint64_t mix(uint64_t h, uint64_t v) {  // FNV-1a style combine
 }
 }  // namespace
 
-void RenderGraph::recordBarrier(const vk::raii::CommandBuffer& cmd,
-                                const BarrierPlan* plan) const {
+void RenderGraph::recordBarrier(const vk::raii::CommandBuffer& cmd, const BarrierPlan* plan) const {
     vk::MemoryBarrier2 memory{.srcStageMask = kStages,
                               .srcAccessMask = kAccess,
                               .dstStageMask = kStages,
@@ -177,8 +175,7 @@ FrameTiming RenderGraph::runFrame() {
         scene::layout::packCamera(*mCamera, mFrame.index, mFrame.framesSinceReset);
     std::memcpy(mCameraBuffer->mapped(), &cameraInfo, sizeof(cameraInfo));
     cmd.reset();
-    cmd.begin(vk::CommandBufferBeginInfo{
-        .flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+    cmd.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
     mTimestamps->reset(cmd);
     // The previous frame (and any upload) is ordered before this one by a full barrier.
     recordBarrier(cmd, nullptr);

@@ -5,8 +5,7 @@
 
 namespace fovea::image {
 
-CompareResult compareImages(const ImageRGBA& actual, const ImageRGBA& expected,
-                            double threshold) {
+CompareResult compareImages(const ImageRGBA& actual, const ImageRGBA& expected, double threshold) {
     CompareResult r;
     if (actual.width != expected.width || actual.height != expected.height) {
         r.sizeMismatch = true;

@@ -57,8 +57,8 @@ CameraPath CameraPath::fromJson(const nlohmann::json& j, const std::string& file
     root.expectObject().checkFields({"version", "description", "loop", "keyframes"});
     int64_t version = root.require("version").asInt();
     if (version != kCameraPathVersion)
-        root.require("version").fail("unsupported camera path version " +
-                                     std::to_string(version) + " (this fovea reads version " +
+        root.require("version").fail("unsupported camera path version " + std::to_string(version) +
+                                     " (this fovea reads version " +
                                      std::to_string(kCameraPathVersion) + ")");
     CameraPath path;
     if (auto loop = root.find("loop")) path.mLoop = loop->asBool();
@@ -75,8 +75,10 @@ CameraPath CameraPath::fromJson(const nlohmann::json& j, const std::string& file
         // Unset fields inherit the previous key, so a path can move only the position.
         if (!path.mKeys.empty()) key.camera = path.mKeys.back().camera;
         key.camera.position = readVec3(k.require("position"));
-        if (auto t = k.find("target")) key.camera.target = readVec3(*t);
-        else if (path.mKeys.empty()) k.fail("missing required field 'target' (first keyframe)");
+        if (auto t = k.find("target"))
+            key.camera.target = readVec3(*t);
+        else if (path.mKeys.empty())
+            k.fail("missing required field 'target' (first keyframe)");
         if (auto u = k.find("up")) key.camera.up = readVec3(*u);
         if (auto f = k.find("yfov_deg")) {
             double deg = f->asNumber();
@@ -91,9 +93,11 @@ CameraPath CameraPath::fromJson(const nlohmann::json& j, const std::string& file
         if (glm::length(key.camera.target - key.camera.position) < 1e-12f)
             k.fail("position and target coincide: the view direction is undefined");
         if (auto g = k.find("gaze")) {
-            if (g->size() < 1 || g->size() > kMaxEyes) g->fail("expected one [x, y] per eye (1 or 2)");
+            if (g->size() < 1 || g->size() > kMaxEyes)
+                g->fail("expected one [x, y] per eye (1 or 2)");
             std::array<glm::vec2, kMaxEyes> gaze{};
-            for (size_t e = 0; e < kMaxEyes; ++e) gaze[e] = readGaze(g->at(std::min(e, g->size() - 1)));
+            for (size_t e = 0; e < kMaxEyes; ++e)
+                gaze[e] = readGaze(g->at(std::min(e, g->size() - 1)));
             key.gaze = gaze;
         }
         if (auto c = k.find("cut")) key.cut = c->asBool();
@@ -145,7 +149,8 @@ CameraSample CameraPath::at(uint64_t frame) const {
         } else {
             // Frames differ (strictly increasing keys), so the division is safe.
             const float t = float(f - k1.frame) / float(k2.frame - k1.frame);
-            const glm::vec3 p0 = i1 > 0 && !k1.cut ? mKeys[i1 - 1].camera.position : k1.camera.position;
+            const glm::vec3 p0 =
+                i1 > 0 && !k1.cut ? mKeys[i1 - 1].camera.position : k1.camera.position;
             const glm::vec3 p3 = i2 + 1 < mKeys.size() && !mKeys[i2 + 1].cut
                                      ? mKeys[i2 + 1].camera.position
                                      : k2.camera.position;
@@ -156,7 +161,8 @@ CameraSample CameraPath::at(uint64_t frame) const {
             sample.camera.yfov = glm::mix(k1.camera.yfov, k2.camera.yfov, t);
             if (k1.gaze && k2.gaze) {
                 std::array<glm::vec2, kMaxEyes> g;
-                for (size_t e = 0; e < kMaxEyes; ++e) g[e] = glm::mix((*k1.gaze)[e], (*k2.gaze)[e], t);
+                for (size_t e = 0; e < kMaxEyes; ++e)
+                    g[e] = glm::mix((*k1.gaze)[e], (*k2.gaze)[e], t);
                 sample.gaze = g;
             } else {
                 sample.gaze = k1.gaze;

@@ -14,7 +14,6 @@ namespace {
 // is never hit. "Up" keeps the data finite.
 const glm::vec3 kFallbackNormal(0.0f, 1.0f, 0.0f);
 
-
 bool finite(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }

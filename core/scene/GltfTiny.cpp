@@ -164,8 +164,7 @@ std::vector<unsigned char> buildGlb(const std::string& json, const std::vector<u
 }  // namespace
 
 tinygltf::Model loadTinyGltf(const GltfDocument& doc, const GltfUsage& usage) {
-    std::string json =
-        prunedJson(doc, usage).dump(-1, ' ', false, Json::error_handler_t::replace);
+    std::string json = prunedJson(doc, usage).dump(-1, ' ', false, Json::error_handler_t::replace);
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(&ignoreImage, nullptr);
     loader.SetFsCallbacks(

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <sstream>
 #include <numbers>
 #include <set>
+#include <sstream>
 
 #include "core/scene/GltfUsage.h"
 

@@ -26,11 +26,11 @@ struct Bounds {
 // glTF 2.0 metallic-roughness material. Texture fields index Scene::textures (-1 = none).
 struct Material {
     std::string name;
-    glm::vec4 baseColor{1.0f};   // linear RGBA factor
-    int baseColorTexture = -1;   // sRGB-encoded texels
-    glm::vec3 emissive{0.0f};    // linear factor, already multiplied by emissive_strength
-    int emissiveTexture = -1;    // sRGB-encoded texels
-    float metallic = 1.0f;       // glTF defaults
+    glm::vec4 baseColor{1.0f};  // linear RGBA factor
+    int baseColorTexture = -1;  // sRGB-encoded texels
+    glm::vec3 emissive{0.0f};   // linear factor, already multiplied by emissive_strength
+    int emissiveTexture = -1;   // sRGB-encoded texels
+    float metallic = 1.0f;      // glTF defaults
     float roughness = 1.0f;
     int metallicRoughnessTexture = -1;  // linear; G = roughness, B = metallic
     bool doubleSided = false;
@@ -86,7 +86,7 @@ struct Scene {
     std::vector<Material> materials;  // never empty once loaded (a default grey one is added)
     std::vector<Texture> textures;
     std::vector<Light> lights;
-    std::vector<CameraDesc> cameras;  // from the file; may be empty
+    std::vector<CameraDesc> cameras;    // from the file; may be empty
     std::vector<std::string> warnings;  // broken entries nothing uses, ignored optional extensions
     Bounds bounds;                      // of mesh.positions
 

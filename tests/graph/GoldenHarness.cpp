@@ -156,9 +156,9 @@ std::optional<GoldenTolerance> sidecarTolerance(const json& sidecar) {
 
 // The sidecar fields that must match the test for the golden to apply.
 json identity(const GoldenSpec& spec, const RenderedOutput& out, uint64_t seed) {
-    json id = {{"graph", spec.graph.generic_string()}, {"output", out.output},
-               {"format", out.format},                 {"size", {spec.width, spec.height}},
-               {"frames", spec.frames},                {"seed", seed}};
+    json id = {
+        {"graph", spec.graph.generic_string()}, {"output", out.output},  {"format", out.format},
+        {"size", {spec.width, spec.height}},    {"frames", spec.frames}, {"seed", seed}};
     if (!spec.scene.empty()) {
         id["scene"] = spec.scene;
         id["stereo"] = spec.stereo;

@@ -44,7 +44,8 @@ GoldenSpec golden(const std::string& name, const std::string& graph) {
 
 TEST_F(GoldenTest, Demo) {
     // Seeded noise accumulated over 3 frames (acc.mean) and an ACES-tonemapped gradient (tm.ldr).
-    EXPECT_TRUE(fovea::test::goldenMatches(ctx(), golden("demo", "graphs/tests/utility_demo.json")));
+    EXPECT_TRUE(
+        fovea::test::goldenMatches(ctx(), golden("demo", "graphs/tests/utility_demo.json")));
 }
 
 TEST_F(GoldenTest, HistoryDifference) {
