@@ -9,6 +9,7 @@
 #include "passes/GBuffer/GBufferPass.h"
 #include "passes/ImageSource/ImageSourcePass.h"
 #include "passes/PathTrace/PathTracePass.h"
+#include "passes/Remodulate/RemodulatePass.h"
 #include "passes/SampleList/SampleListPass.h"
 #include "passes/Tonemap/TonemapPass.h"
 
@@ -50,6 +51,10 @@ void registerBuiltinPasses() {
         "ATrousNH",
         "Edge-avoiding à-trous denoiser (Dammertz 2010) made non-homogeneous (seed 000 §3.4, "
         "Eq. 2, Alg. 1): sample mask, per-layer iterations, decreasing steps, stereo, no holes."));
+    r.add(info<passes::RemodulatePass>(
+        "Remodulate",
+        "Undo albedo demodulation after a denoiser: color * albedo' + emission "
+        "(PathTrace's rule)."));
     r.add(info<passes::SampleListPass>(
         "SampleList",
         "Sample layout from a pattern (all, checkerboard, every n-th, seeded random fraction) with "

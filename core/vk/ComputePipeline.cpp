@@ -205,8 +205,7 @@ std::array<uint32_t, 3> ComputePipeline::groupCount(uint32_t threadsX, uint32_t 
             (threadsZ + local[2] - 1) / local[2]};
 }
 
-void ComputePipeline::dispatch(const vk::raii::CommandBuffer& cmd, uint32_t threadsX,
-                               uint32_t threadsY, uint32_t threadsZ) {
+void ComputePipeline::recordState(const vk::raii::CommandBuffer& cmd) {
     std::vector<vk::WriteDescriptorSet> writes;
     writes.reserve(mStaged.size());
     for (size_t i = 0; i < mStaged.size(); ++i) {
@@ -222,18 +221,34 @@ void ComputePipeline::dispatch(const vk::raii::CommandBuffer& cmd, uint32_t thre
                                    .pImageInfo = isImage ? &mStaged[i].image : nullptr,
                                    .pBufferInfo = isImage ? nullptr : &mStaged[i].buffer});
     }
+    cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *mPipeline);
+    if (!writes.empty())
+        cmd.pushDescriptorSetKHR(vk::PipelineBindPoint::eCompute, *mLayout, 0, writes);
+    if (!mPushData.empty())
+        cmd.pushConstants<uint8_t>(*mLayout, vk::ShaderStageFlagBits::eCompute, 0, mPushData);
+}
+
+void ComputePipeline::dispatch(const vk::raii::CommandBuffer& cmd, uint32_t threadsX,
+                               uint32_t threadsY, uint32_t threadsZ) {
     const auto groups = groupCount(threadsX, threadsY, threadsZ);
     const auto& maxGroups = mContext.limits().maxComputeWorkGroupCount;
     for (int i = 0; i < 3; ++i)
         if (groups[i] > maxGroups[i])
             throw RuntimeError(label() + ": dispatch of " + std::to_string(groups[i]) +
                                " groups exceeds the device limit " + std::to_string(maxGroups[i]));
-    cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *mPipeline);
-    if (!writes.empty())
-        cmd.pushDescriptorSetKHR(vk::PipelineBindPoint::eCompute, *mLayout, 0, writes);
-    if (!mPushData.empty())
-        cmd.pushConstants<uint8_t>(*mLayout, vk::ShaderStageFlagBits::eCompute, 0, mPushData);
+    recordState(cmd);
     cmd.dispatch(groups[0], groups[1], groups[2]);
+}
+
+void ComputePipeline::dispatchIndirect(const vk::raii::CommandBuffer& cmd, const Buffer& args,
+                                       vk::DeviceSize offset) {
+    if (!(args.usage() & vk::BufferUsageFlagBits::eIndirectBuffer))
+        throw RuntimeError(label() + ": indirect dispatch from a buffer without INDIRECT usage");
+    if (offset % 4 != 0 || offset + 3 * sizeof(uint32_t) > args.size())
+        throw RuntimeError(label() + ": indirect arguments at offset " + std::to_string(offset) +
+                           " do not fit the buffer");
+    recordState(cmd);
+    cmd.dispatchIndirect(args.buffer(), offset);
 }
 
 }  // namespace fovea::gpu

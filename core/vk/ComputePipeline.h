@@ -64,10 +64,16 @@ public:
     // bound. Records no barriers: ordering against other work is the caller's job.
     void dispatch(const vk::raii::CommandBuffer& cmd, uint32_t threadsX, uint32_t threadsY = 1,
                   uint32_t threadsZ = 1);
+    // Same, with the group counts read by the GPU from `args` at `offset` (3 x uint32,
+    // VkDispatchIndirectCommand); the buffer needs INDIRECT usage. A zero count records nothing
+    // that runs: how a pass skips work the GPU decided is not needed (no read-back).
+    void dispatchIndirect(const vk::raii::CommandBuffer& cmd, const Buffer& args,
+                          vk::DeviceSize offset = 0);
     std::array<uint32_t, 3> groupCount(uint32_t threadsX, uint32_t threadsY = 1,
                                        uint32_t threadsZ = 1) const;
 
 private:
+    void recordState(const vk::raii::CommandBuffer& cmd);  // pipeline, descriptors, constants
     enum class ScalarClass { Float, Integer, Other };
     template <class T>
     struct ScalarOf {

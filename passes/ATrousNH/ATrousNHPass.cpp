@@ -5,6 +5,7 @@
 
 #include "core/scene/Camera.h"
 #include "core/util/Error.h"
+#include "core/vk/Barriers.h"
 #include "core/vk/ComputePipeline.h"
 #include "core/vk/Resources.h"
 
@@ -14,6 +15,13 @@ namespace {
 const std::vector<std::string> kStepOrders = {"decreasing", "increasing"};
 const std::vector<std::string> kSchedules = {"levels", "layers"};
 constexpr int kMaxIterations = 16;
+// atrous_fill block: uvec4 fillArgs, uvec4 copyArgs, uint holes, uint executed (+ padding).
+constexpr vk::DeviceSize kFillStateBytes = 48;
+constexpr vk::DeviceSize kFillArgsOffset = 0, kCopyArgsOffset = 16;
+// State image codes of the shader: 0 = input colour (source) or `denoised` (destination),
+// 1 = ping, 2 = pong, 3 = `denoised` as a source (fill levels).
+constexpr int kInput = 0, kPing = 1, kPong = 2, kDenoisedSource = 3, kDenoised = 0;
+enum FillArgsMode { kResetCounters = 0, kFillLevelArgs = 1, kCopyBackArgs = 2 };
 
 // 1 / sigma^2, or 0 = the term is off (sigma 0 would divide by zero).
 float invSquare(float sigma) {
@@ -93,7 +101,12 @@ void ATrousNHPass::compile(graph::CompileContext& ctx) {
     mVariant += "," + mStepOrder + "," + mSchedule + (mFill ? ",fill" : "") +
                 (mUseMask ? ",mask" : "") + (mUseNormal ? ",normal" : "") +
                 (mUsePosition ? ",position" : "");
-    mPipeline = ctx.createPipeline("atrous_nh/atrous_nh.comp");
+    mPipeline = ctx.createPipeline("atrous_nh/atrous_nh.comp", {}, {"atrous_fill"});
+    mFillArgs = ctx.createPipeline("atrous_nh/fill_args.comp", {}, {"atrous_fill"});
+    mFillState = std::make_unique<gpu::Buffer>(
+        ctx.gpu(), kFillStateBytes,
+        vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eIndirectBuffer, false,
+        name() + ".fill");
 }
 
 ATrousScheduleOptions ATrousNHPass::scheduleOptions(int width, int height, int eyes) const {
@@ -125,30 +138,75 @@ void ATrousNHPass::execute(graph::ExecuteContext& ctx) {
         .set("invSigmaNormal2", mUseNormal ? invSquare(mSigmaNormal) : 0.0f)
         .set("invSigmaPosition2", mUsePosition ? invSquare(mSigmaPosition) : 0.0f);
 
-    // State images: 0 = the input (dispatch 0 only), 1 = ping, 2 = pong; the last dispatch writes
-    // 0 = `denoised`. Barriers order the dispatches of this pass (the graph orders passes).
-    int src = 0;
-    for (size_t i = 0; i < schedule.size(); ++i) {
-        const bool last = i + 1 == schedule.size();
-        const int dst = last ? 0 : (i % 2 == 0 ? 1 : 2);
-        if (i > 0) {
-            vk::MemoryBarrier2 barrier{.srcStageMask = vk::PipelineStageFlagBits2::eComputeShader,
-                                       .srcAccessMask = vk::AccessFlagBits2::eShaderStorageWrite |
-                                                        vk::AccessFlagBits2::eShaderStorageRead,
-                                       .dstStageMask = vk::PipelineStageFlagBits2::eComputeShader,
-                                       .dstAccessMask = vk::AccessFlagBits2::eShaderStorageWrite |
-                                                        vk::AccessFlagBits2::eShaderStorageRead};
-            ctx.cmd().pipelineBarrier2(
-                vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &barrier});
-        }
+    // Main levels ping-pong between ping and pong and end in `denoised`; they run as plain
+    // dispatches (their count is fixed by the parameters).
+    size_t mainLevels = 0;
+    while (mainLevels < schedule.size() && !schedule[mainLevels].fill) ++mainLevels;
+    const bool anyFill = mainLevels < schedule.size();
+    const auto groups = mPipeline->groupCount(out.width(), out.height());
+    mPipeline->bind("atrous_fill", *mFillState);
+    mFillArgs->bind("atrous_fill", *mFillState);
+    auto fillArgs = [&](FillArgsMode mode) {
+        mFillArgs->set("mode", int(mode)).set("fullGroups", glm::ivec2(groups[0], groups[1]));
+        mFillArgs->dispatch(ctx.cmd(), 1);
+    };
+    if (anyFill) {
+        // Last frame's indirect reads are done before the counters are reset.
+        gpu::computeToIndirectBarrier(ctx.cmd());
+        fillArgs(kResetCounters);
+        gpu::computeToComputeBarrier(ctx.cmd());
+    }
+    int src = kInput;
+    for (size_t i = 0; i < mainLevels; ++i) {
+        const bool last = i + 1 == mainLevels;
+        const int dst = last ? kDenoised : (i % 2 == 0 ? kPing : kPong);
+        if (i > 0) gpu::computeToComputeBarrier(ctx.cmd());
         mPipeline->set("src", src)
             .set("dst", dst)
             .set("activeLayers", int(schedule[i].layers))
             .set("stepWidth", schedule[i].step)
-            .set("fillOnly", int(schedule[i].fill));
+            .set("fillOnly", 0)
+            .set("countHoles", int(last && anyFill));
         mPipeline->dispatch(ctx.cmd(), out.width(), out.height());
         src = dst;
     }
+    if (!anyFill) return;
+    if (mainLevels == 0) {
+        // No main level: a copy brings the input into `denoised` and counts its holes.
+        mPipeline->set("src", kInput)
+            .set("dst", kDenoised)
+            .set("activeLayers", 0)
+            .set("stepWidth", 1)
+            .set("fillOnly", 0)
+            .set("countHoles", 1);
+        mPipeline->dispatch(ctx.cmd(), out.width(), out.height());
+    }
+    // Fill levels alternate denoised -> ping -> denoised ...; each runs only while the previous
+    // level left a hole (fill_args.comp writes 0 groups otherwise), so the levels that run are a
+    // prefix of the schedule and an odd count leaves the result in ping: copied back at the end.
+    // The output equals running every fill level (a level without holes only copies).
+    for (size_t i = mainLevels; i < schedule.size(); ++i) {
+        const bool even = (i - mainLevels) % 2 == 0;
+        gpu::computeToIndirectBarrier(ctx.cmd());
+        fillArgs(kFillLevelArgs);
+        gpu::computeToIndirectBarrier(ctx.cmd());
+        mPipeline->set("src", even ? kDenoisedSource : kPing)
+            .set("dst", even ? kPing : kDenoised)
+            .set("activeLayers", int(schedule[i].layers))
+            .set("stepWidth", schedule[i].step)
+            .set("fillOnly", 1)
+            .set("countHoles", 1);
+        mPipeline->dispatchIndirect(ctx.cmd(), *mFillState, kFillArgsOffset);
+    }
+    gpu::computeToIndirectBarrier(ctx.cmd());
+    fillArgs(kCopyBackArgs);
+    gpu::computeToIndirectBarrier(ctx.cmd());
+    mPipeline->set("src", kPing)
+        .set("dst", kDenoised)
+        .set("activeLayers", 0)
+        .set("fillOnly", 0)
+        .set("countHoles", 0);
+    mPipeline->dispatchIndirect(ctx.cmd(), *mFillState, kCopyArgsOffset);
 }
 
 }  // namespace fovea::passes

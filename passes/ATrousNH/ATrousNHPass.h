@@ -36,6 +36,10 @@ private:
     bool mUseMask = false, mUseNormal = false, mUsePosition = false;
     std::string mVariant;
     std::unique_ptr<gpu::ComputePipeline> mPipeline;
+    // GPU-driven hole filling: fill levels are indirect dispatches whose group count the GPU
+    // sets to 0 once no hole is left (no read-back; most frames need no fill level at all).
+    std::unique_ptr<gpu::ComputePipeline> mFillArgs;
+    std::unique_ptr<gpu::Buffer> mFillState;  // atrous_fill block (shaders/atrous_nh)
 };
 
 }  // namespace fovea::passes

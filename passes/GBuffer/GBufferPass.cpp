@@ -3,6 +3,7 @@
 #include <cctype>
 
 #include "core/scene/SceneGpu.h"
+#include "core/vk/Barriers.h"
 #include "core/vk/ComputePipeline.h"
 #include "core/vk/Resources.h"
 
@@ -74,13 +75,7 @@ void GBufferPass::execute(graph::ExecuteContext& ctx) {
         // dispatches (write-after-write on the same images).
         mPipeline->set("clearPass", 1u);
         mPipeline->dispatch(ctx.cmd(), out.width(), out.height());
-        vk::MemoryBarrier2 barrier{.srcStageMask = vk::PipelineStageFlagBits2::eComputeShader,
-                                   .srcAccessMask = vk::AccessFlagBits2::eShaderStorageWrite,
-                                   .dstStageMask = vk::PipelineStageFlagBits2::eComputeShader,
-                                   .dstAccessMask = vk::AccessFlagBits2::eShaderStorageWrite |
-                                                    vk::AccessFlagBits2::eShaderStorageRead};
-        ctx.cmd().pipelineBarrier2(
-            vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &barrier});
+        gpu::computeToComputeBarrier(ctx.cmd());
     }
     mPipeline->set("clearPass", 0u);
     mPipeline->dispatch(ctx.cmd(), out.width(), out.height());

@@ -3,6 +3,7 @@
 #include "core/scene/SampleLayout.h"
 #include "core/scene/SceneGpu.h"
 #include "core/util/Error.h"
+#include "core/vk/Barriers.h"
 #include "core/vk/ComputePipeline.h"
 #include "core/vk/Resources.h"
 
@@ -113,26 +114,17 @@ void PathTracePass::execute(graph::ExecuteContext& ctx) {
         ctx.bindFields(*mClear);
         mClear->set("size", size);
         mClear->dispatch(ctx.cmd(), out.width(), out.height());
-        vk::MemoryBarrier2 barrier{.srcStageMask = vk::PipelineStageFlagBits2::eComputeShader,
-                                   .srcAccessMask = vk::AccessFlagBits2::eShaderStorageWrite,
-                                   .dstStageMask = vk::PipelineStageFlagBits2::eComputeShader,
-                                   .dstAccessMask = vk::AccessFlagBits2::eShaderStorageWrite |
-                                                    vk::AccessFlagBits2::eShaderStorageRead};
-        ctx.cmd().pipelineBarrier2(
-            vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &barrier});
+        gpu::computeToComputeBarrier(ctx.cmd());
     }
     if (mRayCounter && !mCounterCleared) {
         // Counts accumulate on the GPU from the first frame after compile (32 bits each: about
         // 4000 frames of 640x360 at 1 spp before they wrap).
         mCounterCleared = true;
         ctx.cmd().fillBuffer(mRayCounter->buffer(), 0, VK_WHOLE_SIZE, 0u);
-        vk::MemoryBarrier2 fill{.srcStageMask = vk::PipelineStageFlagBits2::eTransfer,
-                                .srcAccessMask = vk::AccessFlagBits2::eTransferWrite,
-                                .dstStageMask = vk::PipelineStageFlagBits2::eComputeShader,
-                                .dstAccessMask = vk::AccessFlagBits2::eShaderStorageRead |
-                                                 vk::AccessFlagBits2::eShaderStorageWrite};
-        ctx.cmd().pipelineBarrier2(
-            vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &fill});
+        gpu::memoryBarrier(
+            ctx.cmd(), vk::PipelineStageFlagBits2::eTransfer, vk::AccessFlagBits2::eTransferWrite,
+            vk::PipelineStageFlagBits2::eComputeShader,
+            vk::AccessFlagBits2::eShaderStorageRead | vk::AccessFlagBits2::eShaderStorageWrite);
     }
     if (mRayCounter) mTrace->bind("pathtrace_rays", *mRayCounter);
     ctx.bindFields(*mTrace);

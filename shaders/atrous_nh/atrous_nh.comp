@@ -20,7 +20,14 @@ uniform sampler2D position;
 layout(r32ui) uniform readonly uimage2D mask;
 layout(rgba32f) uniform image2D ping;
 layout(rgba32f) uniform image2D pong;
-layout(rgba32f) uniform writeonly image2D denoised;
+layout(rgba32f) uniform image2D denoised;  // also the source of even fill levels (src 3)
+// Hole counter of the GPU-driven fill levels (fill_args.comp turns it into group counts).
+layout(std430) buffer atrous_fill {
+    uvec4 fillArgs;
+    uvec4 copyArgs;
+    uint holes;
+    uint executed;
+};
 
 layout(push_constant) uniform Params {
     ivec2 size;
@@ -28,11 +35,12 @@ layout(push_constant) uniform Params {
     int eyes;          // 1 or 2
     int layerCount;    // 1..3
     int useMask;
-    int src;           // 0 = input color (+ mask), 1 = ping, 2 = pong
+    int src;           // 0 = input color (+ mask), 1 = ping, 2 = pong, 3 = denoised
     int dst;           // 0 = denoised, 1 = ping, 2 = pong
     int activeLayers;  // bit l: layer l is updated
     int stepWidth;     // 2^i
     int fillOnly;      // 1: only pixels without a value are updated
+    int countHoles;    // 1: count the pixels still without a value into atrous_fill.holes
     float invSigmaColor2;     // 1 / sigma^2; 0 = term off
     float invSigmaNormal2;
     float invSigmaPosition2;
@@ -49,6 +57,7 @@ bool finite4(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
 vec4 loadState(ivec2 q) {
     if (pc.src == 1) return imageLoad(ping, q);
     if (pc.src == 2) return imageLoad(pong, q);
+    if (pc.src == 3) return imageLoad(denoised, q);
     vec4 c = texelFetch(color, q, 0);
     bool ok = c.a > 0.0 && finite4(c);
     if (pc.useMask != 0) ok = ok && (imageLoad(mask, q).r & kSampledBit) != 0u;
@@ -56,6 +65,7 @@ vec4 loadState(ivec2 q) {
 }
 
 void storeState(ivec2 p, vec4 s) {
+    if (pc.countHoles != 0 && s.a <= 0.5) atomicAdd(holes, 1u);
     if (pc.dst == 1) imageStore(ping, p, s);
     else if (pc.dst == 2) imageStore(pong, p, s);
     else imageStore(denoised, p, s);

@@ -11,6 +11,7 @@
 #include <cstring>
 #include <memory>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -389,4 +390,47 @@ TEST_F(ATrousNHTest, LayerIterationCountsRespected) {
     auto want = testref::atrousReference(
         refInput(in, 1, 3, options(3, 1, 0, 3, true, false, false, 32), true, normal));
     EXPECT_TRUE(near(got, want, 1e-4f));
+}
+
+TEST_F(ATrousNHTest, GpuDrivenFillLevelsMatchReferenceForOddAndEvenLevelCounts) {
+    // Fill levels are indirect dispatches the GPU skips once no hole is left; an odd number of
+    // executed levels leaves the result in `ping` and needs the copy-back. One valid pixel per
+    // eye at different places needs different numbers of fill levels: both parities occur, and
+    // every case must equal the reference that runs the whole schedule.
+    std::set<int> parities;
+    for (int place = 0; place < 4; ++place) {
+        Inputs in = randomInputs(40, 24, 2, 1.0f, 1.0f, 20 + uint32_t(place));
+        const int xs[4] = {0, 9, 5, 19}, ys[4] = {0, 12, 3, 23};
+        for (int y = 0; y < in.height; ++y)
+            for (int x = 0; x < in.width; ++x) {
+                const bool keep = (x % 20 == xs[place]) && y == ys[place];
+                if (!keep) in.mask[size_t(y * in.width + x)] &= ~1u;
+            }
+        for (int iterations : {0, 1}) {
+            const std::string params = R"({ "layers": 1, "iterations0": )" +
+                                       std::to_string(iterations) + R"(, "eyes": 2 })";
+            std::vector<float> normal;
+            auto got = run(in, params, true, true, &normal);
+            auto r = refInput(in, 2, 1, options(1, iterations, 0, 0, true, false, true, 24), true,
+                              normal);
+            EXPECT_TRUE(near(got, testref::atrousReference(r), 1e-4f))
+                << "place " << place << ", iterations " << iterations;
+            for (size_t i = 0; i < got.size() / 4; ++i)
+                ASSERT_EQ(got[i * 4 + 3], 1.0f) << "hole at pixel " << i << ", place " << place;
+            // How many fill levels had holes to fill (the ones the GPU runs)?
+            const auto full = r.schedule;
+            int executed = 0;
+            for (size_t n = 0; n < full.size(); ++n) {
+                if (!full[n].fill) continue;
+                r.schedule.assign(full.begin(), full.begin() + long(n));
+                auto partial = testref::atrousReference(r);
+                bool hole = false;
+                for (size_t i = 0; i < partial.size() / 4; ++i) hole |= partial[i * 4 + 3] == 0.0f;
+                if (!hole) break;
+                ++executed;
+            }
+            parities.insert(executed % 2);
+        }
+    }
+    EXPECT_EQ(parities.size(), 2u) << "the cases should cover odd and even fill-level counts";
 }

@@ -163,6 +163,7 @@ json identity(const GoldenSpec& spec, const RenderedOutput& out, uint64_t seed) 
         id["scene"] = spec.scene;
         id["stereo"] = spec.stereo;
     }
+    if (!spec.params.empty()) id["params"] = spec.params;
     return id;
 }
 
@@ -380,6 +381,13 @@ std::vector<RenderedOutput> renderGraphOutputs(gpu::Context& ctx, const GoldenSp
                                                uint64_t& seedUsed) {
     registerBuiltinPasses();
     graph::GraphDesc desc = graph::parseGraphFile(resolveGraph(spec.graph));
+    for (const auto& [passName, values] : spec.params.items()) {
+        auto pass = std::find_if(desc.passes.begin(), desc.passes.end(),
+                                 [&](const graph::PassDesc& p) { return p.name == passName; });
+        if (pass == desc.passes.end())
+            throw std::runtime_error("golden '" + spec.name + "': no pass '" + passName + "'");
+        for (const auto& [param, value] : values.items()) pass->params[param] = value;
+    }
     seedUsed = spec.seed ? *spec.seed : desc.defaults.seed.value_or(0);
     graph::CompileOptions options;
     options.width = spec.width;

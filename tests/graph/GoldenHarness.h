@@ -26,6 +26,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -75,6 +76,10 @@ struct GoldenSpec {
     // pair. Empty: no scene. Both are part of the golden's identity when a scene is set.
     std::string scene;
     bool stereo = false;
+    // Parameter overrides { "pass": { "param": value } } applied to the graph file (like
+    // `fovea run --set`), e.g. foveation radii scaled to the small test size. Part of the
+    // golden's identity when set.
+    nlohmann::json params = nlohmann::json::object();
     // Tolerance for newly created goldens (an existing sidecar's tolerance is kept on update);
     // unset: defaultTolerance() of the output's format.
     std::optional<GoldenTolerance> tolerance;

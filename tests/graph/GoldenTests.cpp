@@ -7,7 +7,9 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -40,6 +42,17 @@ GoldenSpec golden(const std::string& name, const std::string& graph) {
     return spec;
 }
 
+// A Cornell-box golden: 128x128 mono, or 128x64 side by side (two 64x64 eyes), one frame.
+GoldenSpec cornellGolden(const std::string& name, const std::string& graph, bool stereo) {
+    GoldenSpec spec = golden(name, graph);
+    spec.scene = "builtin:cornell";
+    spec.stereo = stereo;
+    spec.width = 128;
+    spec.height = stereo ? 64 : 128;
+    spec.frames = 1;
+    return spec;
+}
+
 // --- the goldens ------------------------------------------------------------------------------
 
 TEST_F(GoldenTest, Demo) {
@@ -56,41 +69,97 @@ TEST_F(GoldenTest, HistoryDifference) {
 
 TEST_F(GoldenTest, CornellGBuffer) {
     // Ray-cast primary visibility of the Cornell box (seed 000 §3.1): surfaces, normals, albedo.
-    auto spec = golden("cornell_gbuffer", "graphs/tests/golden_gbuffer.json");
-    spec.scene = "builtin:cornell";
-    spec.width = spec.height = 128;
-    spec.frames = 1;
-    EXPECT_TRUE(fovea::test::goldenMatches(ctx(), spec));
+    EXPECT_TRUE(fovea::test::goldenMatches(
+        ctx(), cornellGolden("cornell_gbuffer", "graphs/tests/golden_gbuffer.json", false)));
 }
 
 TEST_F(GoldenTest, CornellGBufferStereo) {
     // The same, side by side for two eyes in one dispatch (two 64x64 eye images).
-    auto spec = golden("cornell_gbuffer_stereo", "graphs/tests/golden_gbuffer.json");
-    spec.scene = "builtin:cornell";
-    spec.stereo = true;
-    spec.width = 128;
-    spec.height = 64;
-    spec.frames = 1;
-    EXPECT_TRUE(fovea::test::goldenMatches(ctx(), spec));
+    EXPECT_TRUE(fovea::test::goldenMatches(
+        ctx(), cornellGolden("cornell_gbuffer_stereo", "graphs/tests/golden_gbuffer.json", true)));
 }
 
 TEST_F(GoldenTest, CornellPathTrace1spp) {
     // The P2 §3.1 1 spp configuration (graphs/pathtrace.json): bit-reproducible on one driver.
-    auto spec = golden("cornell_pathtrace", "graphs/pathtrace.json");
-    spec.scene = "builtin:cornell";
-    spec.width = spec.height = 128;
-    spec.frames = 1;
-    EXPECT_TRUE(fovea::test::goldenMatches(ctx(), spec));
+    EXPECT_TRUE(fovea::test::goldenMatches(
+        ctx(), cornellGolden("cornell_pathtrace", "graphs/pathtrace.json", false)));
 }
 
 TEST_F(GoldenTest, CornellPathTraceStereo) {
-    auto spec = golden("cornell_pathtrace_stereo", "graphs/pathtrace.json");
-    spec.scene = "builtin:cornell";
-    spec.stereo = true;
-    spec.width = 128;
-    spec.height = 64;
-    spec.frames = 1;
-    EXPECT_TRUE(fovea::test::goldenMatches(ctx(), spec));
+    EXPECT_TRUE(fovea::test::goldenMatches(
+        ctx(), cornellGolden("cornell_pathtrace_stereo", "graphs/pathtrace.json", true)));
+}
+
+// Seed 000's three pipelines (graphs/peres_*.json), stereo 128x64, two frames. Table 1's FHD
+// radii 144/288 px per 960 px eye scale to 10/20 px for a 64 px eye.
+GoldenSpec peresGolden(const std::string& variant) {
+    GoldenSpec spec = cornellGolden("peres_" + variant, "graphs/peres_" + variant + ".json", true);
+    spec.frames = 2;
+    if (variant != "base") spec.params = {{"mask", {{"r0", 10}, {"r1", 20}}}};
+    return spec;
+}
+
+TEST_F(GoldenTest, PeresBase) {
+    EXPECT_TRUE(fovea::test::goldenMatches(ctx(), peresGolden("base")));
+}
+
+TEST_F(GoldenTest, PeresNH2LD) {
+    EXPECT_TRUE(fovea::test::goldenMatches(ctx(), peresGolden("nh2ld")));
+}
+
+TEST_F(GoldenTest, PeresNH3LD) {
+    EXPECT_TRUE(fovea::test::goldenMatches(ctx(), peresGolden("nh3ld")));
+}
+
+TEST_F(GoldenTest, PeresPipelinesFiniteWithoutHolesAndNotDarkened) {
+    // Graph-level properties of the three pipelines: every pixel of the remodulated result is
+    // finite and has a value (a = 1: the denoiser filled every unsampled pixel), and the
+    // foveated pipelines are not darker than Base on average (an unsampled pixel counted as
+    // black would darken the periphery by about the unsampled fraction, ~40%).
+    double meanBase = 0;
+    for (const std::string variant : {"base", "nh2ld", "nh3ld"}) {
+        uint64_t seed = 0;
+        auto outputs = fovea::test::renderGraphOutputs(ctx(), peresGolden(variant), seed);
+        const auto it = std::find_if(outputs.begin(), outputs.end(),
+                                     [](const auto& o) { return o.output == "rm.result"; });
+        ASSERT_NE(it, outputs.end()) << variant;
+        const auto& px = it->image.pixels;
+        double sum = 0;
+        for (size_t i = 0; i < px.size() / 4; ++i) {
+            for (int c = 0; c < 4; ++c) ASSERT_TRUE(std::isfinite(px[i * 4 + c])) << variant;
+            ASSERT_EQ(px[i * 4 + 3], 1.0f) << variant << ": hole at pixel " << i;
+            sum += px[i * 4] + px[i * 4 + 1] + px[i * 4 + 2];
+        }
+        const double mean = sum / double(px.size() / 4);
+        if (variant == "base")
+            meanBase = mean;
+        else
+            EXPECT_NEAR(mean / meanBase, 1.0, 0.15) << variant << " vs Base mean brightness";
+    }
+}
+
+TEST_F(GoldenTest, RemodulateInvertsPathTraceDemodulation) {
+    // docs/passes/Remodulate.md: Remodulate(demodulated, albedo, emission) = radiance, with
+    // PathTrace's albedo rule (near-black albedo neither divided nor multiplied). The emission
+    // comes from GBuffer's rgba16f output, hence the relative tolerance.
+    GoldenSpec spec = cornellGolden("unused", "graphs/tests/remodulate_roundtrip.json", false);
+    spec.width = spec.height = 32;
+    uint64_t seed = 0;
+    auto outputs = fovea::test::renderGraphOutputs(ctx(), spec, seed);
+    ASSERT_EQ(outputs.size(), 2u);
+    const auto& radiance = outputs[0].image.pixels;
+    const auto& result = outputs[1].image.pixels;
+    size_t lit = 0;
+    for (size_t i = 0; i < radiance.size(); ++i) {
+        if (i % 4 == 3) {
+            EXPECT_EQ(result[i], radiance[i]);  // alpha (sample count) kept
+            continue;
+        }
+        ASSERT_NEAR(result[i], radiance[i], 1e-3 * std::max(1.0f, std::fabs(radiance[i])))
+            << "value " << i;
+        lit += radiance[i] > 0.05f;
+    }
+    EXPECT_GT(lit, radiance.size() / 8);  // a lit image, not a trivially equal black one
 }
 
 TEST_F(GoldenTest, Chain20) {

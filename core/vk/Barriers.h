@@ -1,0 +1,21 @@
+// Memory barriers a pass records between its own dispatches (the graph orders passes; a pass
+// with several dependent dispatches orders them itself).
+#pragma once
+#include <vulkan/vulkan_raii.hpp>
+
+namespace fovea::gpu {
+
+// One global memory barrier (synchronization2).
+void memoryBarrier(const vk::raii::CommandBuffer& cmd, vk::PipelineStageFlags2 srcStage,
+                   vk::AccessFlags2 srcAccess, vk::PipelineStageFlags2 dstStage,
+                   vk::AccessFlags2 dstAccess);
+
+// Storage reads and writes of earlier dispatches complete and are visible before the next
+// dispatch reads or writes (ping-pong levels, producer/consumer kernels of one pass).
+void computeToComputeBarrier(const vk::raii::CommandBuffer& cmd);
+
+// A dispatch wrote indirect arguments (and storage data) that the next dispatch consumes, either
+// as its indirect command or as storage.
+void computeToIndirectBarrier(const vk::raii::CommandBuffer& cmd);
+
+}  // namespace fovea::gpu
