@@ -11,6 +11,7 @@
 #include "passes/PathTrace/PathTracePass.h"
 #include "passes/Remodulate/RemodulatePass.h"
 #include "passes/SampleList/SampleListPass.h"
+#include "passes/TAA/TAAPass.h"
 #include "passes/Tonemap/TonemapPass.h"
 
 namespace fovea {
@@ -59,6 +60,8 @@ void registerBuiltinPasses() {
         "SampleList",
         "Sample layout from a pattern (all, checkerboard, every n-th, seeded random fraction) with "
         "a fixed spp per pixel: a stand-in for seed 000's coordinates buffer (§3.2)."));
+    r.add(info<passes::TAAPass>(
+        "TAA", "Temporal AA (Karis 2014; P2 §3): reprojected history, YCoCg clip, blend."));
 }
 
 }  // namespace fovea

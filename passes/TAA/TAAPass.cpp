@@ -1,0 +1,72 @@
+#include "passes/TAA/TAAPass.h"
+
+#include <algorithm>
+
+#include "core/scene/Camera.h"
+#include "core/vk/ComputePipeline.h"
+
+namespace fovea::passes {
+
+void TAAPass::params(graph::ParamVisitor& v) {
+    v.add("alpha", mAlpha, 0.1f,
+          "weight of the current frame: result = mix(history, current, alpha); 1 = no history "
+          "(Karis 2014 uses ~0.04-0.1)",
+          {0.0, 1.0});
+    v.add("clip", mClip, "variance",
+          "history constraint in YCoCg over the 3x3 neighbourhood: variance = Salvi 2016 box "
+          "mean +- gamma*sigma, minmax = min/max box (Karis 2014), none = no constraint",
+          {"variance", "minmax", "none"});
+    v.add("gamma", mGamma, 1.0f, "variance box half-width in standard deviations (clip=variance)",
+          {0.0, 8.0});
+    v.add("historyFilter", mHistoryFilter, "bilinear",
+          "how the reprojected history is sampled: bilinear, or catmull-rom (sharper; may "
+          "overshoot, which the clip bounds)",
+          {"bilinear", "catmull-rom"});
+    v.add("eyes", mEyes, 0,
+          "side-by-side eyes (no tap crosses the seam); 0 = the frame camera's eye count", {0, 2});
+}
+
+void TAAPass::reflect(graph::Reflection& r) const {
+    r.input("color").floatOnly().doc(
+        "the frame to antialias (rgba32f/16f, jittered when the run jitters); rgb filtered, a "
+        "passed through");
+    r.input("motion").optional().floatOnly().sameAs("color").doc(
+        "GBuffer motion: previous pixel - current pixel, jitter-free; open = still camera");
+    r.input("history").floatOnly().sameAs("color").doc(
+        "this pass's own `result` through a delay-1 edge (the previous frame's output)");
+    r.output("result", vk::Format::eR32G32B32A32Sfloat)
+        .sameAs("color")
+        .doc("antialiased colour (finite everywhere); feed it back into `history` with delay 1");
+}
+
+void TAAPass::compile(graph::CompileContext& ctx) {
+    mUseMotion = ctx.connected("motion");
+    mVariant = mClip + "," + mHistoryFilter + (mUseMotion ? ",motion" : "");
+    mPipeline = ctx.createPipeline("taa/taa.comp");
+}
+
+void TAAPass::execute(graph::ExecuteContext& ctx) {
+    const auto& out = ctx.image("result");
+    const int width = int(out.width()), height = int(out.height());
+    int eyes = mEyes > 0 ? mEyes : int(std::clamp(ctx.camera().eyeCount, 1u, scene::kMaxEyes));
+    if (eyes > width) eyes = 1;  // a 1-pixel-wide image cannot be split
+    const int eyeWidth = std::max(width / eyes, 1);
+    // historyValid is false on the first frame and after a reset, resize or camera cut (the graph
+    // invalidates every delayed edge then); the cut flag is checked too so a cut always restarts.
+    const bool useHistory =
+        ctx.historyValid("history") && !ctx.frame().cameraCut && ctx.frame().framesSinceReset > 0;
+    const int clipMode = mClip == "none" ? 0 : (mClip == "minmax" ? 1 : 2);
+    ctx.bindFields(*mPipeline);
+    mPipeline->set("size", glm::ivec2(width, height))
+        .set("eyeWidth", eyeWidth)
+        .set("eyes", eyes)
+        .set("alpha", mAlpha)
+        .set("clipMode", clipMode)
+        .set("gamma", mGamma)
+        .set("catmullRom", int(mHistoryFilter == "catmull-rom"))
+        .set("useHistory", int(useHistory))
+        .set("useMotion", int(mUseMotion));
+    mPipeline->dispatch(ctx.cmd(), out.width(), out.height());
+}
+
+}  // namespace fovea::passes
