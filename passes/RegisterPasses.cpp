@@ -3,6 +3,7 @@
 #include "core/graph/PassRegistry.h"
 #include "passes/ATrousNH/ATrousNHPass.h"
 #include "passes/Accumulate/AccumulatePass.h"
+#include "passes/BMFR/BMFRPass.h"
 #include "passes/Blit/BlitPass.h"
 #include "passes/Combine/CombinePass.h"
 #include "passes/FoveationMask/FoveationMaskPass.h"
@@ -62,6 +63,10 @@ void registerBuiltinPasses() {
         "a fixed spp per pixel: a stand-in for seed 000's coordinates buffer (§3.2)."));
     r.add(info<passes::TAAPass>(
         "TAA", "Temporal AA (Karis 2014; P2 §3): reprojected history, YCoCg clip, blend."));
+    r.add(info<passes::BMFRPass>(
+        "BMFR",
+        "Blockwise multi-order feature regression (seed 003 P2 §3): accumulation, 32x32 block "
+        "QR fit of [1, n, w, w^2], second accumulation, remodulation; numerically guarded."));
 }
 
 }  // namespace fovea

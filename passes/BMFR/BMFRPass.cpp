@@ -1,0 +1,268 @@
+#include "passes/BMFR/BMFRPass.h"
+
+#include "core/util/Error.h"
+#include "core/vk/ComputePipeline.h"
+#include "core/vk/Timestamps.h"
+
+namespace fovea::passes {
+
+namespace {
+
+// P2 §6.1: "a static sequence of 16 random offsets, uniformly distributed over the whole set of
+// possible offsets" (drawn once with Python's random.Random(2019), both axes in [0, 32)).
+constexpr int kOffsets[BMFRPass::kOffsetCount][2] = {
+    {9, 15},  {31, 10}, {15, 15}, {20, 18}, {26, 15}, {26, 29}, {4, 20}, {2, 23},
+    {23, 21}, {17, 13}, {30, 6},  {6, 10},  {18, 28}, {26, 3},  {11, 7}, {2, 3}};
+
+constexpr uint32_t kStatsBytes = 16;  // uint counters[4]
+constexpr uint32_t kCoefStride = 96;  // floats per block (bmfr_common.glsl)
+constexpr float kMaxCount = 255.0f;   // P2 §3.2: the count is only needed while small (8 bits)
+
+void computeBarrier(const vk::raii::CommandBuffer& cmd, vk::PipelineStageFlags2 src,
+                    vk::AccessFlags2 srcAccess) {
+    vk::MemoryBarrier2 b{.srcStageMask = src,
+                         .srcAccessMask = srcAccess,
+                         .dstStageMask = vk::PipelineStageFlagBits2::eComputeShader,
+                         .dstAccessMask = vk::AccessFlagBits2::eShaderStorageRead |
+                                          vk::AccessFlagBits2::eShaderStorageWrite |
+                                          vk::AccessFlagBits2::eShaderSampledRead};
+    cmd.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &b});
+}
+
+void dispatchBarrier(const vk::raii::CommandBuffer& cmd) {
+    computeBarrier(cmd, vk::PipelineStageFlagBits2::eComputeShader,
+                   vk::AccessFlagBits2::eShaderStorageWrite);
+}
+
+// History images, two slots each: frame f writes slot f % 2 and reads the other.
+enum History { kPosition, kNormal, kAccum, kFiltered };
+const char* slotName(History what, uint64_t slot) {
+    static const char* names[4][2] = {{"hist_position0", "hist_position1"},
+                                      {"hist_normal0", "hist_normal1"},
+                                      {"hist_accum0", "hist_accum1"},
+                                      {"hist_filtered0", "hist_filtered1"}};
+    return names[what][slot & 1u];
+}
+
+}  // namespace
+
+BMFRPass::BMFRPass() = default;
+BMFRPass::~BMFRPass() = default;
+
+std::array<int, 2> BMFRPass::blockOffset(uint64_t frame) {
+    const auto& o = kOffsets[frame % kOffsetCount];
+    return {o[0], o[1]};
+}
+
+void BMFRPass::params(graph::ParamVisitor& v) {
+    v.add("features", mFeatures, "default",
+          "feature set: default = [1, n.xyz, w.xyz, w.xyz^2] (P2 Eq. 8); albedo = default + "
+          "albedo.rgb (needs the albedo input)",
+          {"default", "albedo"});
+    v.add("epsilon", mEpsilon, 0.01f,
+          "stochastic regularization: uniform noise in [-epsilon, epsilon] added to the scaled "
+          "features for the fit only (P2 §3.4: 0.01); 0 = off (the drop guard still holds)",
+          {0.0f, 1.0f});
+    v.add("alpha", mAlpha1, 0.2f,
+          "phase I: minimum weight of the new sample; CMA until 1/(n+1) would fall below it, then "
+          "EMA (P2 §3.2: 0.2)",
+          {0.001f, 1.0f});
+    v.add("alphaFiltered", mAlpha3, 0.1f,
+          "phase III: the same for the second accumulation of the fitted frame (P2 §3.5: 0.1)",
+          {0.001f, 1.0f});
+    v.add("positionThreshold", mPositionThreshold, 0.02f,
+          "discard test: a history tap is rejected when its world position is farther than this "
+          "times the pixel's distance from the camera",
+          {0.0f, 1e6f});
+    v.add("normalThreshold", mNormalThreshold, 0.5f,
+          "discard test: a history tap is rejected when the cosine between its normal and the "
+          "pixel's is below this",
+          {-1.0f, 1.0f});
+    v.add("blockOffsets", mOffsets, true,
+          "move the block grid every frame by one of 16 fixed offsets (P2 §3.5, §6.1); false = "
+          "blocks aligned with the image corner");
+    v.add("dropTolerance", mDropTolerance, 1e-3f,
+          "QR guard: a column whose remaining norm is at most this times its original norm is "
+          "numerically dependent and dropped (coefficient 0) instead of dividing by ~0",
+          {0.0f, 0.5f});
+    v.add("fp16History", mFp16History, false,
+          "store the colour histories (phase I and III) as rgba16f instead of rgba32f (P2 §6.1: "
+          "half precision halves their bandwidth); values saturate at 65504");
+    v.add("timings", mTimings, false,
+          "benchmarks: GPU timestamps around each of the 4 kernels (BMFRPass::kernelMs)");
+}
+
+void BMFRPass::reflect(graph::Reflection& r) const {
+    const auto undefined = vk::Format::eUndefined;
+    r.input("color", undefined)
+        .screen()
+        .floatOnly()
+        .doc("noisy albedo-demodulated radiance (PathTrace `demodulated`), a = samples (0 = none)");
+    r.input("position", undefined).screen().floatOnly().doc("world position, w > 0 on a hit");
+    r.input("normal", undefined).screen().floatOnly().doc("shading normal (unit length)");
+    r.input("albedo", undefined)
+        .screen()
+        .floatOnly()
+        .optional()
+        .doc("remodulation albedo (and a feature with features = albedo); open: 1");
+    r.input("emission", undefined)
+        .screen()
+        .floatOnly()
+        .optional()
+        .doc("emission added back after remodulation; open: 0");
+    r.input("motion", undefined)
+        .screen()
+        .floatOnly()
+        .optional()
+        .doc("previous pixel - current pixel; open: reproject positions through the camera");
+
+    const auto rgba32 = vk::Format::eR32G32B32A32Sfloat;
+    r.output("filtered", rgba32).doc("final colour: phase III result remodulated, a = 1");
+    r.output("accumulated", rgba32).doc("phase I: accumulated demodulated radiance, a = samples");
+    r.output("fitted", rgba32).doc("phase II: weighted sum of the block fits (demodulated)");
+    r.output("stats", undefined)
+        .buffer(kStatsBytes)
+        .persistent()
+        .doc(
+            "uint[4] since the last reset: non-finite colour samples, non-finite geometry "
+            "pixels, negative colour samples, blocks with dropped columns");
+    for (const char* f : {"hist_position0", "hist_position1"})
+        r.internal(f, rgba32).persistent().doc("phase I history: positions (ping-pong)");
+    for (const char* f : {"hist_normal0", "hist_normal1"})
+        r.internal(f, vk::Format::eR16G16B16A16Sfloat)
+            .persistent()
+            .doc("phase I history: normals (ping-pong)");
+    const auto history = mFp16History ? vk::Format::eR16G16B16A16Sfloat : rgba32;
+    for (const char* f : {"hist_accum0", "hist_accum1"})
+        r.internal(f, history).persistent().doc("phase I history: colour + count (ping-pong)");
+    for (const char* f : {"hist_filtered0", "hist_filtered1"})
+        r.internal(f, history).persistent().doc("phase III history: colour + count (ping-pong)");
+    r.internal("reprojection", rgba32)
+        .doc("phase I -> III: xy previous pixel, z accepted-tap mask (4 bits)");
+}
+
+void BMFRPass::compile(graph::CompileContext& ctx) {
+    const bool albedoFeature = mFeatures == "albedo";
+    if (albedoFeature && !ctx.connected("albedo"))
+        throw RuntimeError("pass '" + name() +
+                           "' (BMFR): params.features = albedo needs the input 'albedo' "
+                           "connected");
+    mUseMotion = ctx.connected("motion");
+    mUseAlbedo = ctx.connected("albedo");
+    mUseEmission = ctx.connected("emission");
+    const std::vector<std::pair<std::string, std::string>> defines = {
+        {"BMFR_ALBEDO", albedoFeature ? "1" : "0"},
+        {"BMFR_FP16_HISTORY", mFp16History ? "1" : "0"}};
+    mAccumulate = ctx.createPipeline(
+        "bmfr/accumulate.comp", defines,
+        {"prev_position", "prev_normal", "prev_accum", "cur_position", "cur_normal", "cur_accum"});
+    mFit = ctx.createPipeline("bmfr/fit.comp", defines, {"bmfr_coefficients"});
+    mWeightedSum = ctx.createPipeline("bmfr/weighted_sum.comp", defines, {"bmfr_coefficients"});
+    mSecond = ctx.createPipeline("bmfr/accumulate_filtered.comp", defines,
+                                 {"prev_filtered", "cur_filtered"});
+    const auto& size = ctx.renderSize();
+    mBlocksX = blocksAcross(size.width);
+    mBlocksY = blocksAcross(size.height);
+    mCoefficients = std::make_unique<gpu::Buffer>(
+        ctx.gpu(), uint64_t(mBlocksX) * mBlocksY * kCoefStride * sizeof(float),
+        vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferSrc |
+            vk::BufferUsageFlagBits::eTransferDst,
+        false, name() + ".coefficients");
+    mTimestamps.reset();
+    mTimingsPending = false;
+    if (mTimings) mTimestamps = std::make_unique<gpu::TimestampPool>(ctx.gpu(), 5);
+}
+
+void BMFRPass::readTimings() {
+    if (!mTimestamps || !mTimingsPending) return;
+    mTimingsPending = false;
+    // Frames are synchronous (the graph waits for each), so last frame's queries are done.
+    std::vector<uint64_t> t = mTimestamps->readTicks(5);
+    for (int i = 0; i < 4; ++i) mKernelMs[size_t(i)] = mTimestamps->ticksToMs(t[i + 1] - t[i]);
+}
+
+void BMFRPass::execute(graph::ExecuteContext& ctx) {
+    const auto& cmd = ctx.cmd();
+    readTimings();
+    if (ctx.frame().framesSinceReset == 0) mFrames = 0;
+    const bool history = mFrames > 0;
+    const uint64_t cur = mFrames & 1u, prev = cur ^ 1u;
+    const auto& out = ctx.image("filtered");
+    const glm::ivec2 size(int(out.width()), int(out.height()));
+
+    if (!history) {
+        // Counters restart with the history (cumulative since the last reset).
+        cmd.fillBuffer(ctx.buffer("stats").buffer(), 0, VK_WHOLE_SIZE, 0u);
+        computeBarrier(cmd, vk::PipelineStageFlagBits2::eTransfer,
+                       vk::AccessFlagBits2::eTransferWrite);
+    }
+    if (mTimestamps) {
+        mTimestamps->reset(cmd);
+        mTimestamps->write(cmd, 0);
+    }
+    auto stamp = [&](uint32_t i) {
+        if (mTimestamps) mTimestamps->write(cmd, i);
+    };
+
+    // (I) accumulation.
+    ctx.bindFields(*mAccumulate);
+    mAccumulate->bind("prev_position", ctx.image(slotName(kPosition, prev)))
+        .bind("prev_normal", ctx.image(slotName(kNormal, prev)))
+        .bind("prev_accum", ctx.image(slotName(kAccum, prev)))
+        .bind("cur_position", ctx.image(slotName(kPosition, cur)))
+        .bind("cur_normal", ctx.image(slotName(kNormal, cur)))
+        .bind("cur_accum", ctx.image(slotName(kAccum, cur)));
+    mAccumulate->set("size", size)
+        .set("history", int(history))
+        .set("useMotion", int(mUseMotion))
+        .set("alpha", mAlpha1)
+        .set("maxCount", kMaxCount)
+        .set("positionThreshold", mPositionThreshold)
+        .set("normalThreshold", mNormalThreshold);
+    mAccumulate->dispatch(cmd, out.width(), out.height());
+    dispatchBarrier(cmd);
+    stamp(1);
+
+    // (II) fit: one workgroup of 256 threads per block.
+    const auto offset = mOffsets ? blockOffset(ctx.frame().index) : std::array<int, 2>{0, 0};
+    const uint64_t seed = ctx.frame().seed;
+    const uint32_t frameSeed = uint32_t(seed) ^ (uint32_t(seed >> 32) * 0x9e3779b9u) ^
+                               (uint32_t(ctx.frame().index) * 0x85ebca6bu);
+    ctx.bindFields(*mFit);
+    mFit->bind("bmfr_coefficients", *mCoefficients);
+    mFit->set("size", size)
+        .set("offset", glm::ivec2(offset[0], offset[1]))
+        .set("blocksX", mBlocksX)
+        .set("seed", frameSeed)
+        .set("epsilon", mEpsilon)
+        .set("dropTolerance", mDropTolerance);
+    mFit->dispatch(cmd, uint32_t(mBlocksX * mBlocksY) * 256u, 1);
+    dispatchBarrier(cmd);
+    stamp(2);
+
+    // (II) weighted sum with the noise-free features.
+    ctx.bindFields(*mWeightedSum);
+    mWeightedSum->bind("bmfr_coefficients", *mCoefficients);
+    mWeightedSum->set("size", size)
+        .set("offset", glm::ivec2(offset[0], offset[1]))
+        .set("blocksX", mBlocksX);
+    mWeightedSum->dispatch(cmd, out.width(), out.height());
+    dispatchBarrier(cmd);
+    stamp(3);
+
+    // (III) second accumulation + remodulation.
+    ctx.bindFields(*mSecond);
+    mSecond->bind("prev_filtered", ctx.image(slotName(kFiltered, prev)))
+        .bind("cur_filtered", ctx.image(slotName(kFiltered, cur)));
+    mSecond->set("size", size)
+        .set("useAlbedo", int(mUseAlbedo))
+        .set("useEmission", int(mUseEmission))
+        .set("alpha", mAlpha3)
+        .set("maxCount", kMaxCount);
+    mSecond->dispatch(cmd, out.width(), out.height());
+    stamp(4);
+    mTimingsPending = mTimestamps != nullptr;
+    ++mFrames;
+}
+
+}  // namespace fovea::passes

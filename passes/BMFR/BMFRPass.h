@@ -1,0 +1,71 @@
+// BMFR: Blockwise Multi-Order Feature Regression (seed 003, P2 §3): (I) temporal accumulation of
+// the demodulated noisy radiance with a per-tap discard test, (II) per-32x32-block least-squares
+// fit of noise-free features [1, n, w, w^2] (augmented Householder QR with stochastic
+// regularization, block offsets moving every frame), weighted sum, (III) second accumulation
+// reusing phase I's discard decisions, and remodulation by albedo. Numerically guarded: see
+// docs/passes/BMFR.md.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "core/graph/Pass.h"
+
+namespace fovea::gpu {
+class TimestampPool;
+}
+
+namespace fovea::passes {
+
+class BMFRPass : public graph::Pass {
+public:
+    BMFRPass();
+    ~BMFRPass() override;
+
+    void params(graph::ParamVisitor& v) override;
+    void reflect(graph::Reflection& r) const override;
+    void compile(graph::CompileContext& ctx) override;
+    void execute(graph::ExecuteContext& ctx) override;
+    void onReset() override { mFrames = 0; }
+    std::string variant() const override { return mFeatures; }
+
+    // The 16 block offsets (P2 §6.1), in pixels, each component in [0, 32).
+    static constexpr int kOffsetCount = 16;
+    static std::array<int, 2> blockOffset(uint64_t frame);
+    // Blocks per row for an image `width` wide (one more than needed without offsets, so that
+    // any offset still covers the image).
+    static int blocksAcross(uint32_t extent) { return int((extent + 31u) / 32u) + 1; }
+
+    // GPU ms of each kernel in the last frame whose timestamps were read back (they are read at
+    // the start of the next execute): accumulate, fit, weighted sum, second accumulation.
+    // Negative until available.
+    const std::array<double, 4>& kernelMs() const { return mKernelMs; }
+
+private:
+    void readTimings();
+
+    // Parameters.
+    std::string mFeatures = "default";
+    float mEpsilon = 0.01f;
+    float mAlpha1 = 0.2f;
+    float mAlpha3 = 0.1f;
+    float mPositionThreshold = 0.02f;
+    float mNormalThreshold = 0.5f;
+    bool mOffsets = true;
+    float mDropTolerance = 1e-3f;
+    bool mTimings = false;
+    bool mFp16History = false;
+
+    // State.
+    uint64_t mFrames = 0;  // executions since the last reset (also picks the history slot)
+    int mBlocksX = 0, mBlocksY = 0;
+    bool mUseMotion = false, mUseAlbedo = false, mUseEmission = false;
+    std::unique_ptr<gpu::ComputePipeline> mAccumulate, mFit, mWeightedSum, mSecond;
+    std::unique_ptr<gpu::Buffer> mCoefficients;
+    std::unique_ptr<gpu::TimestampPool> mTimestamps;
+    bool mTimingsPending = false;
+    std::array<double, 4> mKernelMs{-1.0, -1.0, -1.0, -1.0};
+};
+
+}  // namespace fovea::passes

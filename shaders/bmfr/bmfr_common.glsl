@@ -1,0 +1,80 @@
+// Shared by the BMFR kernels (seed 003, P2 §3): block geometry, the feature set and the layout
+// of the per-block coefficient buffer. Defines from BMFRPass.cpp: BMFR_ALBEDO (0/1).
+#ifndef FOVEA_BMFR_COMMON_GLSL
+#define FOVEA_BMFR_COMMON_GLSL
+
+// P2 §6.1: 32x32 blocks; one workgroup of 256 threads per block, 4 pixels (rows) per thread.
+#define BMFR_BLOCK 32
+#define BMFR_BLOCK_PIXELS 1024
+#define BMFR_THREADS 256
+#define BMFR_ROWS_PER_THREAD 4
+
+// P2 Eq. 8: T = [1, n.xyz, w.xyz, w.xyz^2] (M = 10), optionally followed by albedo.rgb.
+#if BMFR_ALBEDO
+#define BMFR_M 13
+#else
+#define BMFR_M 10
+#endif
+#define BMFR_COLS (BMFR_M + 3)  // augmented with z.rgb (P2 Eq. 4/7)
+
+// Coefficient buffer, per block (floats): [0, 48) alpha[m * 3 + c]; [48, 51) position centre;
+// [51, 54) position inverse half-range (0 = flat axis); [54, 57) z max per channel (clamp);
+// [57] number of columns dropped as numerically dependent; [64, 80) feature mid-range m;
+// [80, 96) feature inverse half-range m (0 = constant feature in this block).
+#define BMFR_COEF_STRIDE 96
+#define BMFR_COEF_CENTER 48
+#define BMFR_COEF_INVHALF 51
+#define BMFR_COEF_ZMAX 54
+#define BMFR_COEF_DROPPED 57
+#define BMFR_COEF_FMID 64
+#define BMFR_COEF_FINV 80
+
+// Stats counters (uint[4], the `stats` output): see docs/passes/BMFR.md.
+#define BMFR_STAT_NONFINITE_COLOR 0
+#define BMFR_STAT_NONFINITE_GEOMETRY 1
+#define BMFR_STAT_NEGATIVE_COLOR 2
+#define BMFR_STAT_DROPPED_COLUMNS 3
+
+// History colour storage (param fp16History): rgba16f or rgba32f. Stored values are clamped to
+// the format's largest finite value, so a 1e6 firefly saturates instead of becoming +Inf.
+#if BMFR_FP16_HISTORY
+#define BMFR_HIST_FORMAT rgba16f
+#define BMFR_HIST_MAX 65504.0
+#else
+#define BMFR_HIST_FORMAT rgba32f
+#define BMFR_HIST_MAX 3.0e38
+#endif
+
+bool bmfrFinite3(vec3 v) { return !any(isnan(v)) && !any(isinf(v)); }
+bool bmfrFinite4(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
+
+// The unscaled features of one pixel (P2 Eq. 1/8); bmfrScale then maps each feature but the
+// constant to [-1, 1] over the block (P2 §3.4). Positions are centred on the block's
+// min/max mid-point and scaled to [-1, 1] BEFORE squaring: a scene 1e4 units from the origin
+// gives the same features as one at the origin (squaring raw positions would lose everything
+// but the constant part to float rounding), and every feature stays in [-1, 1] (fp16-safe).
+void bmfrFeatures(vec3 w, vec3 n, vec3 albedo, vec3 center, vec3 invHalf,
+                  out float f[BMFR_M]) {
+    vec3 ws = clamp((w - center) * invHalf, -1.0, 1.0);  // invHalf = 0 for a flat axis
+    f[0] = 1.0;
+    f[1] = n.x;
+    f[2] = n.y;
+    f[3] = n.z;
+    f[4] = ws.x;
+    f[5] = ws.y;
+    f[6] = ws.z;
+    f[7] = ws.x * ws.x;
+    f[8] = ws.y * ws.y;
+    f[9] = ws.z * ws.z;
+#if BMFR_ALBEDO
+    f[10] = albedo.r;
+    f[11] = albedo.g;
+    f[12] = albedo.b;
+#endif
+}
+
+// P2 §3.4: "T within every block is scaled to be in range [-1, 1]". inv = 0 for a feature that
+// is constant over the block (the constant column already represents it).
+float bmfrScale(float f, float mid, float inv) { return clamp((f - mid) * inv, -1.0, 1.0); }
+
+#endif

@@ -1,0 +1,65 @@
+#version 460
+// BMFR phase II, weighted sum (seed 003, P2 Eq. 3/6): each pixel evaluates its block's fitted
+// coefficients on the NOISE-FREE features (the regularization noise only entered the fit).
+// The result is clamped to [0, block max of z]: radiance is non-negative, and a least-squares
+// fit of data in [0, zmax] has no reason to leave that range except by extrapolation.
+#extension GL_GOOGLE_include_directive : require
+#include "bmfr/bmfr_common.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+uniform sampler2D accumulated;
+uniform sampler2D position;
+uniform sampler2D normal;
+#if BMFR_ALBEDO
+uniform sampler2D albedo;  // a feature only with features = albedo
+#endif
+layout(std430) buffer Coefficients { float v[]; } bmfr_coefficients;
+layout(rgba32f) uniform writeonly image2D fitted;
+
+layout(push_constant) uniform Params {
+    ivec2 size;
+    ivec2 offset;
+    int blocksX;
+} pc;
+
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, pc.size))) return;
+    vec4 z = texelFetch(accumulated, p, 0);
+    vec4 w = texelFetch(position, p, 0);
+    vec3 n = texelFetch(normal, p, 0).xyz;
+    vec3 a = vec3(0.0);
+#if BMFR_ALBEDO
+    a = texelFetch(albedo, p, 0).rgb;
+    if (!bmfrFinite3(a)) a = vec3(0.0);
+    a = clamp(a, 0.0, 1.0);
+#endif
+    // Pixels the fit did not use (miss, non-finite geometry) keep their accumulated value.
+    vec3 y = z.rgb;
+    if (w.w > 0.0 && bmfrFinite3(w.xyz) && bmfrFinite3(n)) {
+        ivec2 q = p + pc.offset;  // offset >= 0, so q >= 0
+        int block = (q.y / BMFR_BLOCK) * pc.blocksX + q.x / BMFR_BLOCK;
+        int base = block * BMFR_COEF_STRIDE;
+        vec3 center, invHalf, zMax;
+        for (int c = 0; c < 3; ++c) {
+            center[c] = bmfr_coefficients.v[base + BMFR_COEF_CENTER + c];
+            invHalf[c] = bmfr_coefficients.v[base + BMFR_COEF_INVHALF + c];
+            zMax[c] = bmfr_coefficients.v[base + BMFR_COEF_ZMAX + c];
+        }
+        float f[BMFR_M];
+        bmfrFeatures(w.xyz, clamp(n, -1.0, 1.0), a, center, invHalf, f);
+        vec3 s = vec3(0.0);
+        for (int m = 0; m < BMFR_M; ++m) {
+            float g = m == 0 ? 1.0
+                             : bmfrScale(f[m], bmfr_coefficients.v[base + BMFR_COEF_FMID + m],
+                                         bmfr_coefficients.v[base + BMFR_COEF_FINV + m]);
+            s += g * vec3(bmfr_coefficients.v[base + m * 3 + 0],
+                             bmfr_coefficients.v[base + m * 3 + 1],
+                             bmfr_coefficients.v[base + m * 3 + 2]);
+        }
+        y = bmfrFinite3(s) ? clamp(s, vec3(0.0), zMax) : z.rgb;
+    }
+    if (!bmfrFinite3(y)) y = vec3(0.0);
+    imageStore(fitted, p, vec4(y, z.a));
+}

@@ -1,0 +1,120 @@
+#include "tests/graph/BmfrTestUtil.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "core/graph/GraphDesc.h"
+#include "core/graph/PassRegistry.h"
+#include "core/vk/Resources.h"
+
+namespace fovea::testbmfr {
+
+namespace {
+
+using namespace fovea::graph;
+
+class FeedPass : public Pass {
+public:
+    void reflect(Reflection& r) const override {
+        // Formats as GBuffer / PathTrace produce them.
+        r.output("color", vk::Format::eR32G32B32A32Sfloat).persistent();
+        r.output("position", vk::Format::eR32G32B32A32Sfloat).persistent();
+        r.output("normal", vk::Format::eR16G16B16A16Sfloat).persistent();
+        r.output("albedo", vk::Format::eR16G16B16A16Sfloat).persistent();
+        r.output("emission", vk::Format::eR16G16B16A16Sfloat).persistent();
+        r.output("motion", vk::Format::eR16G16Sfloat).persistent();
+    }
+    void execute(ExecuteContext&) override {}
+};
+
+const PassRegistry& registry() {
+    static PassRegistry r = [] {
+        PassRegistry reg;
+        reg.add({"Feed", "", [] { return std::make_unique<FeedPass>(); }});
+        reg.add({"BMFR", "", [] { return std::make_unique<passes::BMFRPass>(); }});
+        return reg;
+    }();
+    return r;
+}
+
+}  // namespace
+
+void BmfrInputs::resize(int w, int h) {
+    width = w;
+    height = h;
+    const size_t n = size_t(w) * size_t(h) * 4;
+    for (auto* v : {&color, &position, &normal, &albedo, &emission, &motion}) v->assign(n, 0.0f);
+}
+
+BmfrHarness::BmfrHarness(gpu::Context& ctx, const BmfrInputs& in, const std::string& params,
+                         BmfrEdges edges)
+    : mCtx(ctx), mEdges(edges) {
+    std::string e = R"({ "from": "feed.color", "to": "bmfr.color" },
+                       { "from": "feed.position", "to": "bmfr.position" },
+                       { "from": "feed.normal", "to": "bmfr.normal" })";
+    if (edges.albedo) e += R"(, { "from": "feed.albedo", "to": "bmfr.albedo" })";
+    if (edges.emission) e += R"(, { "from": "feed.emission", "to": "bmfr.emission" })";
+    if (edges.motion) e += R"(, { "from": "feed.motion", "to": "bmfr.motion" })";
+    const std::string text =
+        R"({ "version": 1, "name": "bmfr_test", "passes": [ { "name": "feed", "type": "Feed" },)"
+        R"( { "name": "bmfr", "type": "BMFR", "params": )" +
+        params + R"( } ], "edges": [ )" + e +
+        R"( ], "outputs": [ "bmfr.filtered", "bmfr.accumulated", "bmfr.fitted", "bmfr.stats" ] })";
+    CompileOptions o;
+    o.width = uint32_t(in.width);
+    o.height = uint32_t(in.height);
+    mGraph = std::make_unique<RenderGraph>(ctx, registry());
+    mGraph->build(parseGraphText(text, "bmfr_test"), o);
+    mGraph->setSeed(7);
+    upload(in);
+}
+
+BmfrHarness::~BmfrHarness() = default;
+
+void BmfrHarness::upload(const BmfrInputs& in, bool colorOnly) {
+    // Feed never writes its (persistent) outputs, so the test owns their content.
+    auto target = [&](const char* name) -> gpu::Image& {
+        return const_cast<gpu::Image&>(mGraph->image(name));
+    };
+    target("feed.color").uploadRGBA32F(mCtx, in.color);
+    if (colorOnly) return;
+    target("feed.position").uploadRGBA32F(mCtx, in.position);
+    target("feed.normal").uploadRGBA32F(mCtx, in.normal);
+    target("feed.albedo").uploadRGBA32F(mCtx, in.albedo);
+    target("feed.emission").uploadRGBA32F(mCtx, in.emission);
+    target("feed.motion").uploadRGBA32F(mCtx, in.motion);
+}
+
+void BmfrHarness::runFrame() {
+    mGraph->runFrame();
+}
+
+std::vector<float> BmfrHarness::read(const std::string& field) const {
+    return mGraph->image("bmfr." + field).downloadRGBA32F(mCtx);
+}
+
+std::vector<float> BmfrHarness::normalsUsed() const {
+    return mGraph->image("feed.normal").downloadRGBA32F(mCtx);
+}
+
+passes::BMFRPass& BmfrHarness::pass() {
+    for (auto& node : mGraph->plan().nodes)
+        if (node.name == "bmfr") return dynamic_cast<passes::BMFRPass&>(*node.pass);
+    throw std::logic_error("no bmfr pass");
+}
+
+std::vector<uint32_t> BmfrHarness::stats() const {
+    const auto& nodes = mGraph->plan().nodes;
+    for (size_t i = 0; i < nodes.size(); ++i)
+        if (nodes[i].name == "bmfr")
+            return mGraph->bufferFor(i, "stats").downloadAs<uint32_t>(mCtx);
+    throw std::logic_error("no bmfr pass");
+}
+
+bool allFinite(const std::vector<float>& v) {
+    for (float x : v)
+        if (!std::isfinite(x)) return false;
+    return true;
+}
+
+}  // namespace fovea::testbmfr
