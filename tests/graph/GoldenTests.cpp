@@ -162,6 +162,15 @@ TEST_F(GoldenTest, RemodulateInvertsPathTraceDemodulation) {
     EXPECT_GT(lit, radiance.size() / 8);  // a lit image, not a trivially equal black one
 }
 
+TEST_F(GoldenTest, KoskelaBMFR) {
+    // Seed 003 P2's pipeline (graphs/koskela_bmfr.json): 1 spp, BMFR, TAA; four frames so that
+    // both accumulations and the TAA history are exercised. 64x64 = 4 BMFR blocks (2x2 + offsets).
+    GoldenSpec spec = cornellGolden("koskela_bmfr", "graphs/koskela_bmfr.json", false);
+    spec.width = spec.height = 64;
+    spec.frames = 4;
+    EXPECT_TRUE(fovea::test::goldenMatches(ctx(), spec));
+}
+
 TEST_F(GoldenTest, Chain20) {
     // 18 chained Combines of animated noise (aliased transients), tonemapped to rgba8.
     EXPECT_TRUE(fovea::test::goldenMatches(ctx(), golden("chain20", "graphs/tests/chain20.json")));
