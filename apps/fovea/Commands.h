@@ -35,6 +35,9 @@ struct RunOptions {
     bool quiet = false;
     // `fovea reference`: a progress bar with an ETA counting samples per pixel instead of frames.
     uint32_t samplesPerFrame = 0;  // 0 = plain frame counter
+    // --reference: an EXR (every frame) or a directory of per-frame EXRs (ReferenceErrors.h);
+    // errors of `referenceOutput` (default: the first float output) go into report.json.
+    std::string reference, referenceOutput;
 };
 
 void addRunCommand(CLI::App& app, RunOptions& options);
@@ -47,6 +50,22 @@ struct ReferenceOptions {
 };
 void addReferenceCommand(CLI::App& app, ReferenceOptions& options);
 int referenceCommand(ReferenceOptions options);
+// Samples per pixel per frame of a reference graph: the `spp` of its PathTrace pass(es), which
+// must agree. Errors name `graphFile`.
+uint32_t referenceSamplesPerFrame(const graph::GraphDesc& desc, const std::string& graphFile);
+// Frames a reference graph needs for `spp` samples per pixel (>= 1).
+uint32_t referenceFrames(uint32_t spp, uint32_t samplesPerFrame);
+
+// `fovea bench`: run time against error of several graphs (docs/bench.md).
+struct BenchOptions {
+    std::string file, out, device;
+    bool validation = false, overwrite = false, quiet = false;
+};
+void addBenchCommand(CLI::App& app, BenchOptions& options);
+int benchCommand(const BenchOptions& options);
+
+// The rule of run and bench: `dir` must be a directory (or absent) and empty unless overwrite.
+void checkOutputDir(const std::filesystem::path& dir, const std::string& option, bool overwrite);
 
 struct ValidateOptions {
     GraphOptions graph;

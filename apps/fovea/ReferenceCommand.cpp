@@ -5,6 +5,9 @@
 #include <filesystem>
 
 #include "apps/fovea/Commands.h"
+#include "apps/fovea/GraphRunner.h"
+#include "apps/fovea/Progress.h"
+#include "apps/fovea/ReferenceErrors.h"
 #include "core/util/Error.h"
 
 namespace fovea::app {
@@ -31,9 +34,7 @@ void addReferenceCommand(CLI::App& app, ReferenceOptions& o) {
     addSceneOptions(*cmd, o.run.scene);
 }
 
-int referenceCommand(ReferenceOptions o) {
-    // Samples per frame = the `spp` of the graph's PathTrace pass(es) after --set overrides.
-    graph::GraphDesc desc = loadGraph(o.run.graph);
+uint32_t referenceSamplesPerFrame(const graph::GraphDesc& desc, const std::string& graphFile) {
     uint32_t perFrame = 0;
     for (const auto& p : desc.passes) {
         if (p.type != "PathTrace") continue;
@@ -41,14 +42,42 @@ int referenceCommand(ReferenceOptions o) {
         if (auto it = p.params.find("spp"); it != p.params.end() && it->is_number_unsigned())
             spp = it->get<uint32_t>();
         if (perFrame != 0 && spp != perFrame)
-            throw InputError(o.run.graph.graph, "/passes",
+            throw InputError(graphFile, "/passes",
                              "reference graphs need one samples-per-frame count; PathTrace passes "
                              "disagree");
         perFrame = spp;
     }
     if (perFrame == 0)
-        throw InputError(o.run.graph.graph, "/passes", "a reference graph needs a PathTrace pass");
-    const uint32_t frames = uint32_t((uint64_t(o.spp) + perFrame - 1) / perFrame);  // >= 1
+        throw InputError(graphFile, "/passes", "a reference graph needs a PathTrace pass");
+    return perFrame;
+}
+
+uint32_t referenceFrames(uint32_t spp, uint32_t samplesPerFrame) {
+    return uint32_t((uint64_t(spp) + samplesPerFrame - 1) / samplesPerFrame);  // >= 1
+}
+
+image::ImageRGBA renderReferenceImage(gpu::Context& ctx, RunScene& scene,
+                                      const graph::GraphDesc& desc, const std::string& graphFile,
+                                      uint32_t spp, const GraphRunConfig& config,
+                                      const std::string& output, const std::string& outputOption,
+                                      bool quiet) {
+    const uint32_t perFrame = referenceSamplesPerFrame(desc, graphFile);
+    const uint32_t frames = referenceFrames(spp, perFrame);
+    GraphRunner runner(ctx, scene, desc, config);
+    const std::string compared = selectComparedOutput(runner, output, outputOption);
+    Progress progress(frames, perFrame, quiet);
+    for (uint32_t f = 0; f < frames; ++f) {
+        runner.runFrame();
+        progress.update(f + 1);
+    }
+    progress.finish();
+    return runner.download(compared);
+}
+
+int referenceCommand(ReferenceOptions o) {
+    // Samples per frame = the `spp` of the graph's PathTrace pass(es) after --set overrides.
+    const uint32_t perFrame = referenceSamplesPerFrame(loadGraph(o.run.graph), o.run.graph.graph);
+    const uint32_t frames = referenceFrames(uint32_t(o.spp), perFrame);
     o.run.frames = int(frames);
     o.run.saveFrames = "last";
     o.run.samplesPerFrame = perFrame;

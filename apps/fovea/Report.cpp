@@ -39,29 +39,35 @@ nlohmann::json buildReport(const graph::RenderGraph& graph, const ReportInputs& 
         if (node.pass) {
             std::string variant = node.pass->variant();
             if (!variant.empty()) p["variant"] = variant;
+            // Counters the pass keeps (e.g. BMFR's sanitized NaN inputs), after the last frame.
+            json statistics = graph.passStatistics(n);
+            if (!statistics.is_null()) p["statistics"] = statistics;
         }
         passes.push_back(p);
     }
-    return {{"report_version", kReportSchemaVersion},
-            {"fovea_version", FOVEA_VERSION},
-            {"graph", in.graphFile},
-            {"scene", in.scene},
-            {"device", {{"name", in.deviceName}, {"driver", in.driver}}},
-            {"size", {in.width, in.height}},
-            {"frames", in.frames},
-            {"seed", in.seed},
-            {"build_ms", in.buildMs},
-            {"passes", passes},
-            {"memory",
-             {{"transient_bytes", plan.transientBytes()},
-              {"transient_bytes_without_aliasing", plan.transientBytesWithoutAliasing()},
-              {"persistent_bytes", plan.persistentBytes()},
-              {"allocated_transient_bytes", graph.allocatedTransientBytes()},
-              {"allocated_persistent_bytes", graph.allocatedPersistentBytes()}}},
-            {"frame_ms", statsJson(computeStats(in.frameGpuMs))},
-            {"frame_cpu_ms", statsJson(computeStats(in.frameCpuMs))},
-            {"executor_overhead_cpu_ms", statsJson(computeStats(in.overheadCpuMs))},
-            {"outputs", in.outputs}};
+    nlohmann::json report = {
+        {"report_version", kReportSchemaVersion},
+        {"fovea_version", FOVEA_VERSION},
+        {"graph", in.graphFile},
+        {"scene", in.scene},
+        {"device", {{"name", in.deviceName}, {"driver", in.driver}}},
+        {"size", {in.width, in.height}},
+        {"frames", in.frames},
+        {"seed", in.seed},
+        {"build_ms", in.buildMs},
+        {"passes", passes},
+        {"memory",
+         {{"transient_bytes", plan.transientBytes()},
+          {"transient_bytes_without_aliasing", plan.transientBytesWithoutAliasing()},
+          {"persistent_bytes", plan.persistentBytes()},
+          {"allocated_transient_bytes", graph.allocatedTransientBytes()},
+          {"allocated_persistent_bytes", graph.allocatedPersistentBytes()}}},
+        {"frame_ms", statsJson(computeStats(in.frameGpuMs))},
+        {"frame_cpu_ms", statsJson(computeStats(in.frameCpuMs))},
+        {"executor_overhead_cpu_ms", statsJson(computeStats(in.overheadCpuMs))},
+        {"outputs", in.outputs}};
+    if (!in.reference.is_null()) report["reference"] = in.reference;
+    return report;
 }
 
 }  // namespace fovea::app

@@ -22,9 +22,10 @@ struct ReportInputs {
     double buildMs = 0;  // RenderGraph::build: plan compile, allocation, pass compile (shaders)
     std::vector<double> frameGpuMs, frameCpuMs, overheadCpuMs;
     std::vector<std::string> outputs;  // written files, relative to the out dir
+    nlohmann::json reference;          // null, or the "reference" object (run --reference)
 };
 
-constexpr int kReportSchemaVersion = 2;
+constexpr int kReportSchemaVersion = 3;
 nlohmann::json buildReport(const graph::RenderGraph& graph, const ReportInputs& in);
 
 }  // namespace fovea::app

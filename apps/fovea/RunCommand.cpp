@@ -8,10 +8,10 @@
 #include <sstream>
 
 #include "apps/fovea/Commands.h"
+#include "apps/fovea/GraphRunner.h"
 #include "apps/fovea/Progress.h"
+#include "apps/fovea/ReferenceErrors.h"
 #include "apps/fovea/Report.h"
-#include "core/graph/PassRegistry.h"
-#include "core/graph/RenderGraph.h"
 #include "core/image/ImageIO.h"
 #include "core/util/Error.h"
 #include "core/vk/Context.h"
@@ -39,6 +39,11 @@ void addRunCommand(CLI::App& app, RunOptions& o) {
     cmd->add_flag("--no-aliasing", o.graph.noAliasing, "give every transient image its own memory");
     cmd->add_flag("--overwrite", o.overwrite, "allow writing into a non-empty output directory");
     cmd->add_flag("--quiet", o.quiet, "no progress on stderr");
+    cmd->add_option("--reference", o.reference,
+                    "reference EXR (all frames) or directory of per-frame EXRs (*frameNNNN*.exr): "
+                    "per-frame errors go into report.json");
+    cmd->add_option("--reference-output", o.referenceOutput,
+                    "graph output compared with --reference (default: the first float output)");
     addSceneOptions(*cmd, o.scene);
 }
 
@@ -77,11 +82,16 @@ std::set<uint32_t> parseSaveFrames(const std::string& text, uint32_t frames) {
     return out;
 }
 
-image::ImageRGBA download(const gpu::Context& ctx, const gpu::Image& img) {
-    return {img.width(), img.height(), img.downloadRGBA32F(ctx)};
-}
-
 }  // namespace
+
+void checkOutputDir(const fs::path& dir, const std::string& option, bool overwrite) {
+    if (fs::exists(dir) && !fs::is_directory(dir))
+        throw InputError(option, "", "'" + dir.string() + "' exists and is not a directory");
+    if (fs::exists(dir) && !fs::is_empty(dir) && !overwrite)
+        throw InputError(
+            option, "",
+            "directory '" + dir.string() + "' is not empty; pass --overwrite to replace its files");
+}
 
 int runCommand(const RunOptions& o) {
     graph::GraphDesc desc = loadGraph(o.graph);
@@ -96,73 +106,50 @@ int runCommand(const RunOptions& o) {
     std::set<uint32_t> save = parseSaveFrames(o.saveFrames, frames);
     fs::path outDir =
         o.out.empty() ? fs::path("out") / (desc.name.empty() ? "run" : desc.name) : fs::path(o.out);
-    if (fs::exists(outDir) && !fs::is_directory(outDir))
-        throw InputError("--out", "", "'" + outDir.string() + "' exists and is not a directory");
-    if (fs::exists(outDir) && !fs::is_empty(outDir) && !o.overwrite)
-        throw InputError("--out", "",
-                         "directory '" + outDir.string() +
-                             "' is not empty; pass --overwrite to replace its files");
+    checkOutputDir(outDir, "--out", o.overwrite);
+    if (!o.referenceOutput.empty() && o.reference.empty())
+        throw InputError("--reference-output", "", "needs --reference");
+    std::optional<ReferenceSource> reference;
+    if (!o.reference.empty()) {
+        reference.emplace(o.reference, "--reference", width, height);
+        reference->requireFrames(0, frames - 1);
+    }
 
-    gpu::ContextOptions ctxOptions;
-    ctxOptions.device = o.device;
-    ctxOptions.validation = o.validation;
-    gpu::Context& ctx = device.emplace(ctxOptions);
-    if (!o.quiet)
-        std::cerr << "fovea: device " << ctx.deviceName() << " (" << ctx.driverName() << " "
-                  << ctx.driverInfo() << ")\n";
-
-    for (const auto& w : scene.hasScene() ? scene.json()["warnings"] : nlohmann::json::array())
-        if (!o.quiet) std::cerr << "fovea: warning: " << w.get<std::string>() << "\n";
-    scene.upload(ctx);
-
-    graph::CompileOptions options;
-    options.width = width;
-    options.height = height;
-    options.aliasing = !o.graph.noAliasing;
-    options.sceneFeatures = scene.features();
-    graph::RenderGraph graph(ctx, graph::passRegistry());
-    graph.setScene(scene.gpu());
-    graph.setCamera(scene.frameCamera(0, width, height));
-    auto buildStart = std::chrono::steady_clock::now();
-    graph.build(desc, options);
-    const double buildMs =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - buildStart)
-            .count();
-    graph.setSeed(seed);
+    gpu::Context& ctx = openDevice(device, o.device, o.validation, o.quiet);
+    uploadScene(ctx, scene, o.quiet);
+    GraphRunner runner(ctx, scene, desc, {width, height, seed, !o.graph.noAliasing, {}});
+    // Reading the compared output back costs a transfer per frame: only with --reference.
+    const std::string compared =
+        reference ? selectComparedOutput(runner, o.referenceOutput, "--reference-output") : "";
+    if (reference) reference->choose(compared);
+    FrameErrors errors;
     fs::create_directories(outDir);
 
-    ReportInputs report;
-    report.graphFile = o.graph.graph;
-    report.scene = scene.json();
-    report.buildMs = buildMs;
-    report.deviceName = ctx.deviceName();
-    report.driver = ctx.driverName() + " " + ctx.driverInfo();
-    report.width = width;
-    report.height = height;
-    report.frames = frames;
-    report.seed = seed;
+    ReportInputs report = runner.reportBase(o.graph.graph, frames);
     Progress progress(frames, o.samplesPerFrame, o.quiet);
     for (uint32_t f = 0; f < frames; ++f) {
-        if (f > 0) graph.setCamera(scene.frameCamera(f, width, height));
-        graph::FrameTiming t = graph.runFrame();
+        graph::FrameTiming t = runner.runFrame();
         report.frameGpuMs.push_back(t.gpuMs);
         report.frameCpuMs.push_back(t.recordCpuMs);
         report.overheadCpuMs.push_back(t.recordCpuMs - t.passCpuMs);
+        if (reference)
+            errors.add(f, runner.download(compared), compared + " frame " + std::to_string(f),
+                       reference->forFrame(f), reference->fileFor(f).string());
         if (save.count(f)) {
             for (const auto& out : desc.outputs) {
-                const auto& plan = graph.plan();
-                if (!plan.nodes[plan.findNode(out.source.pass)].alive) continue;  // culled
-                std::string base = out.source.str();
+                const std::string name = out.source.str();
+                if (!runner.alive(name)) continue;  // culled
+                std::string base = name;
                 if (frames > 1) {
                     char suffix[32];
                     std::snprintf(suffix, sizeof suffix, ".frame%04u", f);
                     base += suffix;
                 }
-                image::ImageRGBA img = download(ctx, graph.image(out.source.str()));
+                image::ImageRGBA img = runner.download(name);
                 image::writeExr(outDir / (base + ".exr"), img);
                 // An 8-bit UNORM output (e.g. Tonemap's) is display-encoded already.
                 const bool displayEncoded =
-                    gpu::formatIsUnorm8(graph.image(out.source.str()).format());
+                    gpu::formatIsUnorm8(runner.graph().image(name).format());
                 image::writePng(
                     outDir / (base + ".png"), img,
                     displayEncoded ? image::PngEncoding::AsIs : image::PngEncoding::Srgb);
@@ -173,10 +160,14 @@ int runCommand(const RunOptions& o) {
         progress.update(f + 1);
     }
     progress.finish();
-    if (ctx.validationMessageCount() > 0)
-        throw RuntimeError(std::to_string(ctx.validationMessageCount()) +
-                           " Vulkan validation message(s) during the run (see above)");
-    std::ofstream(outDir / "report.json") << buildReport(graph, report).dump(2) << "\n";
+    checkValidation(ctx);
+    if (reference) {
+        report.reference = errors.json();
+        report.reference["path"] = o.reference;
+        report.reference["mode"] = reference->perFrame() ? "per-frame" : "single";
+        report.reference["output"] = compared;
+    }
+    std::ofstream(outDir / "report.json") << buildReport(runner.graph(), report).dump(2) << "\n";
     if (!o.quiet) std::cerr << "fovea: wrote " << (outDir / "report.json").string() << "\n";
     return kExitOk;
 }

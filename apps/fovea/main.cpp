@@ -38,11 +38,13 @@ int main(int argc, char** argv) {
     PassesOptions passes;
     ReferenceOptions reference;
     CompareOptions compare;
+    BenchOptions bench;
     addRunCommand(app, run);
     addReferenceCommand(app, reference);
     addValidateCommand(app, validate);
     addPassesCommand(app, passes);
     addCompareCommand(app, compare);
+    addBenchCommand(app, bench);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -66,6 +68,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("validate")) return validateCommand(validate);
         if (app.got_subcommand("passes")) return passesCommand(passes);
         if (app.got_subcommand("compare")) return compareCommand(compare);
+        if (app.got_subcommand("bench")) return benchCommand(bench);
     } catch (const fovea::InputError& e) {
         std::cerr << "error: " << e.what() << "\n";
         return kExitInput;

@@ -4,7 +4,9 @@
 // (isActive + bypass, cacheable). Barriers, allocation and history are the graph's job.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -97,6 +99,12 @@ public:
     virtual const scene::FrameCamera& camera() const = 0;
 };
 
+// What Pass::statistics may read: the device and the pass's own buffer fields.
+struct StatisticsContext {
+    gpu::Context& gpu;
+    std::function<const gpu::Buffer&(const std::string& field)> buffer;
+};
+
 class Pass {
 public:
     virtual ~Pass() = default;
@@ -120,6 +128,9 @@ public:
     // Which specialization ran (e.g. "lambert,emissive,no-punctual,no-textures,bounces=1"), for
     // reports; empty for passes with a single variant.
     virtual std::string variant() const { return {}; }
+    // Counters the pass wants in report.json (e.g. how many NaN inputs it sanitized), read after
+    // the last frame (a GPU read-back: only for reports, never per frame). Null = none.
+    virtual nlohmann::json statistics(const StatisticsContext&) const { return nullptr; }
 
     const std::string& name() const { return mName; }
     const std::string& type() const { return mType; }

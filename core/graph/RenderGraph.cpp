@@ -228,6 +228,15 @@ const gpu::Image& RenderGraph::imageFor(size_t node, const std::string& field) c
     return *r.ring[slotOf(r, in->second.delay)];
 }
 
+nlohmann::json RenderGraph::passStatistics(size_t node) const {
+    if (node >= mPlan.nodes.size() || !mPlan.nodes[node].alive || !mPlan.nodes[node].pass)
+        return nullptr;
+    StatisticsContext ctx{mGpu, [this, node](const std::string& field) -> const gpu::Buffer& {
+                              return bufferFor(node, field);
+                          }};
+    return mPlan.nodes[node].pass->statistics(ctx);
+}
+
 const gpu::Buffer& RenderGraph::bufferFor(size_t node, const std::string& field) const {
     auto own = mPlan.resourceOf.find({node, field});
     size_t index;

@@ -83,6 +83,9 @@ public:
     uint64_t allocatedPersistentBytes() const { return mAllocatedPersistent; }
     gpu::Context& gpu() { return mGpu; }
 
+    // Pass::statistics of node `node` (null for culled passes or passes without counters).
+    nlohmann::json passStatistics(size_t node) const;
+
     // Used by the contexts handed to passes.
     const gpu::Image& imageFor(size_t node, const std::string& field) const;
     const gpu::Buffer& bufferFor(size_t node, const std::string& field) const;

@@ -265,4 +265,14 @@ void BMFRPass::execute(graph::ExecuteContext& ctx) {
     ++mFrames;
 }
 
+nlohmann::json BMFRPass::statistics(const graph::StatisticsContext& ctx) const {
+    // The `stats` counters (docs/passes/BMFR.md#stats), since the last reset or camera cut.
+    const auto counts = ctx.buffer("stats").downloadAs<uint32_t>(ctx.gpu);
+    if (counts.size() < 4) return nullptr;
+    return {{"nonfinite_color_samples", counts[0]},
+            {"nonfinite_geometry_pixels", counts[1]},
+            {"negative_color_samples", counts[2]},
+            {"rank_deficient_blocks", counts[3]}};
+}
+
 }  // namespace fovea::passes

@@ -29,6 +29,7 @@ public:
     void execute(graph::ExecuteContext& ctx) override;
     void onReset() override { mFrames = 0; }
     std::string variant() const override { return mFeatures; }
+    nlohmann::json statistics(const graph::StatisticsContext& ctx) const override;
 
     // The 16 block offsets (P2 §6.1), in pixels, each component in [0, 32).
     static constexpr int kOffsetCount = 16;

@@ -153,3 +153,27 @@ TEST(CliScene, SceneWithoutLightsWarnsAndSunLightsIt) {
     for (float v : pixels(tmp / "sun" / "pt.radiance.frame0001.exr")) sum += v;
     EXPECT_GT(sum, 0.0);
 }
+
+TEST(CliScene, ReportCarriesPassStatistics) {
+    // Pass::statistics reaches report.json: BMFR's sanitizer counters (docs/report-format.md).
+    TempDir tmp;
+    Result r = cli({"run", (kRepo / "graphs" / "koskela_bmfr.json").string(), "--size", "32x32",
+                    "--frames", "2", "--save-frames", "none", "--out", (tmp / "k").string(),
+                    "--quiet"});
+    ASSERT_EQ(r.code, 0) << r.describe();
+    json report = readReport(tmp / "k");
+    bool found = false;
+    for (const auto& p : report.at("passes")) {
+        if (p.at("type") != "BMFR") {
+            EXPECT_FALSE(p.contains("statistics")) << p.dump();
+            continue;
+        }
+        found = true;
+        const json& s = p.at("statistics");
+        for (const char* key : {"nonfinite_color_samples", "nonfinite_geometry_pixels",
+                                "negative_color_samples", "rank_deficient_blocks"})
+            EXPECT_TRUE(s.contains(key) && s.at(key).is_number_unsigned()) << key;
+        EXPECT_EQ(s.at("nonfinite_color_samples"), 0);  // PathTrace never emits NaN
+    }
+    EXPECT_TRUE(found);
+}

@@ -21,7 +21,8 @@ TEST(CliRun, DemoWritesReportAndImages) {
     json report = json::parse(readText(out / "report.json"), nullptr, false);
     ASSERT_FALSE(report.is_discarded()) << readText(out / "report.json");
 
-    EXPECT_EQ(report.at("report_version"), 2);
+    EXPECT_EQ(report.at("report_version"), 3);
+    EXPECT_FALSE(report.contains("reference")) << "only with --reference";
     ASSERT_TRUE(report.at("fovea_version").is_string());
     EXPECT_FALSE(report["fovea_version"].get<std::string>().empty());
     EXPECT_EQ(report.at("graph"), kDemo.string());
@@ -326,14 +327,16 @@ TEST(CliHelp, EverySubcommandHasHelp) {
                                           {"-h"},
                                           {"run", "--help"},
                                           {"validate", "--help"},
-                                          {"passes", "--help"}}) {
+                                          {"passes", "--help"},
+                                          {"bench", "--help"}}) {
         Result r = cli(args);
         EXPECT_EQ(r.code, 0) << r.describe();
         EXPECT_TRUE(contains(r.out, "Usage") || contains(r.out, "usage")) << r.describe();
     }
     Result run = cli({"run", "--help"});
-    for (const char* flag : {"--out", "--frames", "--size", "--set", "--seed", "--save-frames",
-                             "--overwrite", "--device", "--validation"})
+    for (const char* flag :
+         {"--out", "--frames", "--size", "--set", "--seed", "--save-frames", "--overwrite",
+          "--device", "--validation", "--reference", "--reference-output"})
         EXPECT_TRUE(contains(run.out, flag)) << flag << "\n" << run.out;
     Result top = cli({"--help"});
     for (const char* sub : {"run", "validate", "passes"})
@@ -348,10 +351,12 @@ TEST(CliHelp, EverySubcommandHasHelp) {
 
 TEST(CliValidate, EveryShippedGraphIsValid) {
     std::vector<fs::path> graphs;
-    // graphs/cameras/ holds camera paths, not graphs (CameraPathTests load those).
+    // graphs/cameras/ holds camera paths and graphs/benches/ bench files, not graphs (tested by
+    // CameraPathTests and CliBenchTests).
     for (const auto& e : fs::recursive_directory_iterator(kRepo / "graphs"))
         if (e.is_regular_file() && e.path().extension() == ".json" &&
-            e.path().parent_path().filename() != "cameras")
+            e.path().parent_path().filename() != "cameras" &&
+            e.path().parent_path().filename() != "benches")
             graphs.push_back(e.path());
     std::sort(graphs.begin(), graphs.end());
     ASSERT_GE(graphs.size(), 5u) << "graphs/ should hold demo.json and graphs/tests/*.json";

@@ -1,0 +1,71 @@
+// `fovea bench`: the bench file (docs/bench.md), the measured results of each graph, and the
+// files written from them (bench.json, bench.csv, bench.md, bench.svg, bench.png).
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "apps/fovea/Report.h"
+#include "core/image/ImageMetrics.h"
+
+namespace fovea::app {
+
+struct BenchGraph {
+    std::string label, file;        // file resolved against the bench file's folder
+    std::vector<std::string> sets;  // "pass.param=value", as --set
+    std::string output;             // compared output; "" = the bench's, else the first float one
+    std::string pointer;            // "/graphs/<i>"
+};
+
+struct BenchReference {
+    std::string file;  // an EXR or a directory of per-frame EXRs; "" when rendered
+    bool render = false;
+    uint32_t spp = 1024;
+    std::string graph;   // reference graph (default graphs/reference.json of the source tree)
+    std::string output;  // its output used as the reference ("" = its first float output)
+    std::vector<std::string> sets;
+};
+
+struct BenchSpec {
+    std::string file, name;
+    std::string scene, camera;  // camera: a camera path JSON, "" = the scene's still camera
+    bool stereo = false;
+    uint32_t width = 0, height = 0, frames = 0, warmup = 1;
+    uint64_t seed = 1;
+    std::string output;
+    BenchReference reference;
+    std::vector<BenchGraph> graphs;
+};
+
+// Throws InputError(file, JSON pointer, message) for a bad bench file.
+BenchSpec parseBenchFile(const std::filesystem::path& file);
+
+struct BenchPass {
+    std::string name, type, status;
+    Stats gpuMs;  // over the measured frames in which the pass ran (executed or bypassed)
+    uint64_t executions = 0;  // measured frames in which it executed
+};
+
+struct BenchResult {
+    BenchGraph graph;
+    std::string output;  // the output compared
+    Stats frameMs;       // GPU frame time over the measured frames
+    double speedup = 1;  // baseline (first graph) median frame ms / this graph's
+    image::ImageMetrics meanErrors;
+    double temporalError = 0;
+    nlohmann::json errors;  // FrameErrors::json()
+    std::vector<BenchPass> passes;
+};
+
+// bench.json, bench.csv, bench.md; `header` holds the run's description (device, scene, ...).
+void writeBenchTables(const std::filesystem::path& dir, const nlohmann::json& header,
+                      const std::vector<BenchResult>& results);
+// The run-time-vs-error plot as SVG text (BenchPlot.cpp).
+std::string benchPlotSvg(const std::vector<BenchResult>& results, const std::string& title);
+// Rasterizes an SVG file to PNG through OpenImageIO; false (and why) when it cannot.
+bool rasterizeSvg(const std::filesystem::path& svg, const std::filesystem::path& png,
+                  std::string& why);
+
+}  // namespace fovea::app

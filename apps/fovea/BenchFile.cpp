@@ -1,0 +1,146 @@
+// Parsing of `fovea bench` files (docs/bench.md). Every error names the file and the JSON
+// pointer of the offending value; paths are relative to the bench file's folder.
+#include <filesystem>
+#include <fstream>
+
+#include "apps/fovea/Bench.h"
+#include "core/util/DidYouMean.h"
+#include "core/util/Error.h"
+
+namespace fovea::app {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+class Reader {
+public:
+    explicit Reader(std::string file) : mFile(std::move(file)) {}
+    [[noreturn]] void fail(const std::string& pointer, const std::string& message) const {
+        throw InputError(mFile, pointer, message);
+    }
+    void keys(const json& j, const std::string& pointer,
+              const std::vector<std::string>& allowed) const {
+        if (!j.is_object()) fail(pointer.empty() ? "/" : pointer, "expected an object");
+        for (const auto& [key, value] : j.items())
+            if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
+                fail(pointer + "/" + key, "unknown field '" + key + "'" + didYouMean(key, allowed));
+    }
+    const json& need(const json& j, const std::string& pointer, const std::string& key) const {
+        if (!j.contains(key)) fail(pointer.empty() ? "/" : pointer, "missing field '" + key + "'");
+        return j[key];
+    }
+    std::string string(const json& j, const std::string& pointer) const {
+        if (!j.is_string() || j.get<std::string>().empty())
+            fail(pointer, "expected a non-empty string");
+        return j.get<std::string>();
+    }
+    uint32_t count(const json& j, const std::string& pointer, uint32_t min, uint32_t max) const {
+        if (!j.is_number_integer() || j.get<int64_t>() < min || j.get<int64_t>() > max)
+            fail(pointer, "expected an integer in [" + std::to_string(min) + ", " +
+                              std::to_string(max) + "]");
+        return uint32_t(j.get<int64_t>());
+    }
+    std::vector<std::string> strings(const json& j, const std::string& pointer) const {
+        if (!j.is_array()) fail(pointer, "expected an array of strings");
+        std::vector<std::string> out;
+        for (size_t i = 0; i < j.size(); ++i)
+            out.push_back(string(j[i], pointer + "/" + std::to_string(i)));
+        return out;
+    }
+    // A path relative to the bench file's folder; must exist.
+    std::string path(const json& j, const std::string& pointer, const char* what) const {
+        std::string text = string(j, pointer);
+        fs::path p =
+            fs::path(text).is_absolute() ? fs::path(text) : fs::path(mFile).parent_path() / text;
+        if (!fs::exists(p)) fail(pointer, what + std::string(" '") + p.string() + "' not found");
+        return p.lexically_normal().string();
+    }
+
+private:
+    std::string mFile;
+};
+
+BenchReference parseReference(const Reader& r, const json& j) {
+    BenchReference ref;
+    if (j.is_string() && j.get<std::string>() == "render") {
+        ref.render = true;
+    } else if (j.is_string()) {
+        ref.file = r.path(j, "/reference", "reference");
+    } else if (j.is_object()) {
+        r.keys(j, "/reference", {"render"});
+        const json& render = r.need(j, "/reference", "render");
+        r.keys(render, "/reference/render", {"spp", "graph", "set", "output"});
+        ref.render = true;
+        if (render.contains("spp"))
+            ref.spp = r.count(render["spp"], "/reference/render/spp", 1, 1u << 24);
+        if (render.contains("graph"))
+            ref.graph = r.path(render["graph"], "/reference/render/graph", "graph file");
+        if (render.contains("output"))
+            ref.output = r.string(render["output"], "/reference/render/output");
+        if (render.contains("set")) ref.sets = r.strings(render["set"], "/reference/render/set");
+    } else {
+        r.fail("/reference", "expected an EXR path, \"render\" or {\"render\": {\"spp\": N, ...}}");
+    }
+    if (ref.render && ref.graph.empty())
+        ref.graph = (fs::path(FOVEA_SOURCE_DIR) / "graphs" / "reference.json").string();
+    return ref;
+}
+
+}  // namespace
+
+BenchSpec parseBenchFile(const fs::path& file) {
+    const std::string name = file.string();
+    std::ifstream stream(file);
+    if (!stream) throw InputError(name, "", "cannot open bench file");
+    json j = json::parse(stream, nullptr, false);
+    if (j.is_discarded()) throw InputError(name, "", "not valid JSON");
+    Reader r(name);
+    r.keys(j, "",
+           {"version", "name", "description", "scene", "camera", "size", "stereo", "frames",
+            "warmup", "seed", "output", "reference", "graphs"});
+    BenchSpec spec;
+    spec.file = name;
+    if (r.count(r.need(j, "", "version"), "/version", 1, 1) != 1) r.fail("/version", "expected 1");
+    spec.name = j.contains("name") ? r.string(j["name"], "/name") : file.stem().string();
+    const std::string scene = r.string(r.need(j, "", "scene"), "/scene");
+    spec.scene = scene.rfind("builtin:", 0) == 0 ? scene : r.path(j["scene"], "/scene", "scene");
+    if (j.contains("camera")) spec.camera = r.path(j["camera"], "/camera", "camera path");
+    const json& size = r.need(j, "", "size");
+    if (!size.is_array() || size.size() != 2) r.fail("/size", "expected [width, height]");
+    spec.width = r.count(size[0], "/size/0", 1, 16384);
+    spec.height = r.count(size[1], "/size/1", 1, 16384);
+    if (j.contains("stereo")) {
+        if (!j["stereo"].is_boolean()) r.fail("/stereo", "expected true or false");
+        spec.stereo = j["stereo"].get<bool>();
+    }
+    spec.frames = r.count(r.need(j, "", "frames"), "/frames", 1, 1u << 20);
+    if (j.contains("warmup")) spec.warmup = r.count(j["warmup"], "/warmup", 0, 1u << 20);
+    if (spec.warmup >= spec.frames)
+        r.fail("/warmup", "warm-up (" + std::to_string(spec.warmup) +
+                              ") leaves no measured frame of " + std::to_string(spec.frames));
+    if (j.contains("seed")) spec.seed = r.count(j["seed"], "/seed", 0, 0xffffffffu);
+    if (j.contains("output")) spec.output = r.string(j["output"], "/output");
+    spec.reference = parseReference(r, r.need(j, "", "reference"));
+    const json& graphs = r.need(j, "", "graphs");
+    if (!graphs.is_array() || graphs.empty()) r.fail("/graphs", "expected a non-empty array");
+    for (size_t i = 0; i < graphs.size(); ++i) {
+        BenchGraph g;
+        g.pointer = "/graphs/" + std::to_string(i);
+        r.keys(graphs[i], g.pointer, {"file", "label", "set", "output"});
+        g.file = r.path(r.need(graphs[i], g.pointer, "file"), g.pointer + "/file", "graph file");
+        g.label = graphs[i].contains("label") ? r.string(graphs[i]["label"], g.pointer + "/label")
+                                              : fs::path(g.file).stem().string();
+        if (graphs[i].contains("set")) g.sets = r.strings(graphs[i]["set"], g.pointer + "/set");
+        if (graphs[i].contains("output"))
+            g.output = r.string(graphs[i]["output"], g.pointer + "/output");
+        for (const auto& other : spec.graphs)
+            if (other.label == g.label)
+                r.fail(g.pointer + "/label", "label '" + g.label + "' is used twice");
+        spec.graphs.push_back(std::move(g));
+    }
+    return spec;
+}
+
+}  // namespace fovea::app

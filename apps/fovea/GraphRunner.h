@@ -1,0 +1,87 @@
+// What `run`, `reference` and `bench` share: opening the device, building one graph on it with a
+// scene, and running its frames (camera per frame, timings, reading outputs back). Each command
+// adds its own outputs around this loop (files, report.json, errors against a reference).
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "apps/fovea/Report.h"
+#include "apps/fovea/SceneSetup.h"
+#include "core/graph/RenderGraph.h"
+#include "core/image/ImageIO.h"
+
+namespace fovea::gpu {
+class Context;
+}
+
+namespace fovea::app {
+
+// Creates the device (after every input was checked, so bad input fails without one), prints
+// its name unless quiet.
+gpu::Context& openDevice(std::optional<gpu::Context>& device, const std::string& selector,
+                         bool validation, bool quiet);
+// Prints the scene's load warnings unless quiet, and uploads it.
+void uploadScene(gpu::Context& ctx, RunScene& scene, bool quiet);
+// Throws RuntimeError when the validation layer reported anything during the run.
+void checkValidation(const gpu::Context& ctx);
+
+struct GraphRunConfig {
+    uint32_t width = 0, height = 0;
+    uint64_t seed = 0;
+    bool aliasing = true;
+    // Set: every frame uses the camera of this camera-path frame (a converged reference of one
+    // frame of a moving path); unset: frame f uses the path's frame f.
+    std::optional<uint64_t> fixedCameraFrame;
+};
+
+class GraphRunner {
+public:
+    // Builds `desc` on `ctx` for `scene` (uploaded already; both must outlive the runner).
+    GraphRunner(gpu::Context& ctx, RunScene& scene, const graph::GraphDesc& desc,
+                const GraphRunConfig& config);
+
+    // Runs the next frame (hands the graph its camera first) and returns its timings.
+    graph::FrameTiming runFrame();
+    uint32_t framesRun() const { return mFrames; }
+
+    // True when the pass producing `resource` ("pass.field") survived culling.
+    bool alive(const std::string& resource) const;
+    // The current content of a live resource as RGBA float.
+    image::ImageRGBA download(const std::string& resource) const;
+    // The first marked output of the graph file whose image is a float format (not 8-bit UNORM,
+    // not uint) and whose pass is alive; "" when there is none.
+    std::string firstFloatOutput() const;
+
+    graph::RenderGraph& graph() { return mGraph; }
+    const graph::RenderGraph& graph() const { return mGraph; }
+    double buildMs() const { return mBuildMs; }
+    // report.json fields that do not depend on the frames: device, scene, size, seed, build.
+    ReportInputs reportBase(const std::string& graphFile, uint32_t frames) const;
+
+private:
+    gpu::Context& mCtx;
+    RunScene& mScene;
+    graph::GraphDesc mDesc;
+    GraphRunConfig mConfig;
+    graph::RenderGraph mGraph;
+    double mBuildMs = 0;
+    uint32_t mFrames = 0;
+};
+
+}  // namespace fovea::app
+
+namespace fovea::app {
+
+// The converged reference of one camera-path frame: `desc` (a reference graph, e.g.
+// graphs/reference.json) accumulated over referenceFrames(spp, ...) frames with the camera held
+// at `config.fixedCameraFrame`; returns `output` (default: its first float output). What
+// `fovea reference` renders, in process (defined in ReferenceCommand.cpp). Errors about the
+// output name `outputOption`.
+image::ImageRGBA renderReferenceImage(gpu::Context& ctx, RunScene& scene,
+                                      const graph::GraphDesc& desc, const std::string& graphFile,
+                                      uint32_t spp, const GraphRunConfig& config,
+                                      const std::string& output, const std::string& outputOption,
+                                      bool quiet);
+
+}  // namespace fovea::app

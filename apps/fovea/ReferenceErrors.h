@@ -1,0 +1,88 @@
+// Error figures of a graph output against a reference, frame by frame (`run --reference`,
+// `bench`): where each frame's reference comes from, which output is compared, and the per-frame
+// and mean metrics of core/image/ImageMetrics.h plus the temporal error (docs/report-format.md).
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/image/ImageMetrics.h"
+
+namespace fovea::app {
+
+class GraphRunner;
+
+// The reference of every frame. `path` is either
+//  - an image file (EXR): one converged reference for all frames (a still camera), or
+//  - a directory: one file per frame whose name contains `frameNNNN` (4+ digits, the frame
+//    number of the run, as `run --save-frames all` names them) and ends in `.exr`: a moving
+//    camera path needs a reference per frame. A directory holding several files for one frame (a
+//    `run --save-frames all` folder with several outputs) is resolved by choose(): the file
+//    named `<compared output>.frameNNNN...` wins.
+// `option` names the source in errors (e.g. "--reference" or the bench file's pointer).
+class ReferenceSource {
+public:
+    ReferenceSource(const std::filesystem::path& path, const std::string& option, uint32_t width,
+                    uint32_t height);
+    bool perFrame() const { return mPerFrame; }
+    const std::filesystem::path& path() const { return mPath; }
+    // Throws InputError naming the directory when one of frames [first, last] has no file.
+    void requireFrames(uint32_t first, uint32_t last) const;
+    // Picks each frame's file given the compared output (see above); throws InputError listing
+    // the files when a frame stays ambiguous. Needed before forFrame in per-frame mode.
+    void choose(const std::string& output);
+    std::filesystem::path fileFor(uint32_t frame) const;
+    // Reads (and checks size and finiteness of) the reference of `frame`.
+    const image::ImageRGBA& forFrame(uint32_t frame);
+
+private:
+    std::filesystem::path mPath;
+    std::string mOption;
+    uint32_t mWidth, mHeight;
+    bool mPerFrame = false;
+    std::map<uint32_t, std::vector<std::filesystem::path>> mCandidates;  // per-frame mode
+    std::map<uint32_t, std::filesystem::path> mFiles;                    // after choose()
+    std::optional<uint32_t> mLoadedFrame;
+    image::ImageRGBA mImage;
+    void load(const std::filesystem::path& file);
+};
+
+// The output compared: `requested` (must be one of the graph's marked outputs, alive) or, when
+// empty, the first float output. Errors name `option`.
+std::string selectComparedOutput(const GraphRunner& runner, const std::string& requested,
+                                 const std::string& option);
+
+// Per-frame metrics and the temporal error (Schied et al. 2017: mean |ΔY| between consecutive
+// compared frames of the output).
+class FrameErrors {
+public:
+    explicit FrameErrors(image::MetricOptions options = {}) : mOptions(options) {}
+    void add(uint32_t frame, const image::ImageRGBA& test, const std::string& testName,
+             const image::ImageRGBA& reference, const std::string& referenceName);
+    size_t count() const { return mFrames.size(); }
+    // Mean of each per-frame figure; PSNR is +inf when any frame's is (identical images).
+    image::ImageMetrics mean() const;
+    // Mean temporal error over consecutive pairs; 0 with fewer than two frames.
+    double temporalError() const;
+    // {"frames": [{"frame", "reference", metrics..., "temporal_error"}], "mean": {...},
+    //  "temporal_error"}: the metric keys of metricsToJson; "temporal_error" of a frame is
+    // against the previous compared frame (null for the first).
+    nlohmann::json json() const;
+
+private:
+    struct Frame {
+        uint32_t frame;
+        std::string reference;
+        image::ImageMetrics metrics;
+        std::optional<double> temporal;
+    };
+    image::MetricOptions mOptions;
+    std::vector<Frame> mFrames;
+    std::optional<image::ImageRGBA> mPrevious;
+};
+
+}  // namespace fovea::app

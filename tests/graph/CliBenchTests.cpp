@@ -1,0 +1,175 @@
+// `fovea bench BENCH.json --out DIR` end to end (docs/bench.md): a tiny bench of two graphs
+// writes bench.json/.csv/.md/.svg with the documented keys, the baseline's speedup is 1, the plot
+// has one point per graph, a rendered reference is cached and reused, a file reference gives the
+// same errors, and bad bench files exit 2 naming the JSON pointer. Tiny sizes (lavapipe).
+#include "tests/graph/CliTestUtil.h"
+
+using namespace fovea::clitest;
+
+namespace {
+
+const fs::path kGraph = kRepo / "graphs" / "demo.json";
+
+json tinyBench() {
+    return {{"version", 1},
+            {"name", "tiny"},
+            {"scene", "builtin:cornell"},
+            {"size", {32, 32}},
+            {"frames", 3},
+            {"warmup", 1},
+            {"output", "acc.mean"},
+            {"reference", {{"render", {{"spp", 8}}}}},
+            {"graphs",
+             {{{"label", "spp 1"}, {"file", kGraph.string()}, {"set", {"pt.spp=1"}}},
+              {{"label", "spp 2"}, {"file", kGraph.string()}, {"set", {"pt.spp=2"}}}}}};
+}
+
+Result bench(const TempDir& tmp, const json& spec, const std::string& out,
+             std::vector<std::string> extra = {}) {
+    const fs::path file = tmp / (out + ".bench.json");
+    writeText(file, spec.dump(2));
+    std::vector<std::string> args = {"bench", file.string(), "--out", (tmp / out).string(),
+                                     "--quiet"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return cli(args);
+}
+
+size_t countOf(const std::string& text, const std::string& needle) {
+    size_t n = 0;
+    for (size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1))
+        ++n;
+    return n;
+}
+
+}  // namespace
+
+TEST(CliBench, TinyBenchWritesEveryFile) {
+    TempDir tmp;
+    Result r = bench(tmp, tinyBench(), "out");
+    ASSERT_EQ(r.code, 0) << r.describe();
+    const fs::path out = tmp / "out";
+    for (const char* f : {"bench.json", "bench.csv", "bench.md", "bench.svg"})
+        ASSERT_TRUE(fs::is_regular_file(out / f)) << f << "\n" << r.describe();
+
+    const json j = json::parse(readText(out / "bench.json"));
+    EXPECT_EQ(j.at("bench_version"), 1);
+    EXPECT_EQ(j.at("size"), json::array({32, 32}));
+    EXPECT_EQ(j.at("frames"), 3);
+    EXPECT_EQ(j.at("warmup"), 1);
+    EXPECT_EQ(j.at("reference").at("source"), "render");
+    EXPECT_EQ(j["reference"].at("cached"), false);
+    EXPECT_EQ(j["reference"].at("mode"), "single");
+    ASSERT_EQ(j.at("graphs").size(), 2u);
+    const json& base = j["graphs"][0];
+    const json& two = j["graphs"][1];
+    EXPECT_EQ(base.at("label"), "spp 1");
+    EXPECT_EQ(base.at("speedup").get<double>(), 1.0) << "the baseline is the first graph";
+    EXPECT_NEAR(two.at("speedup").get<double>(),
+                base["frame_ms"]["median"].get<double>() / two["frame_ms"]["median"].get<double>(),
+                1e-9);
+    for (const json& g : j["graphs"]) {
+        EXPECT_EQ(g.at("output"), "acc.mean");
+        expectStats(g.at("frame_ms"), "frame_ms");
+        const json& e = g.at("errors");
+        ASSERT_EQ(e.at("frames").size(), 2u) << "frames after the warm-up only";
+        EXPECT_EQ(e["frames"][0].at("frame"), 1);
+        for (const char* key : {"rmse_percent", "psnr_db", "ssim", "rel_mse"})
+            EXPECT_TRUE(e.at("mean").at(key).is_number()) << key;
+        EXPECT_GT(e["mean"]["rmse_percent"].get<double>(), 0.0);
+        EXPECT_TRUE(e.at("temporal_error").is_number());
+        std::set<std::string> passes;
+        for (const json& p : g.at("passes")) {
+            passes.insert(p.at("name"));
+            expectStats(p.at("gpu_ms"), "passes.gpu_ms");
+        }
+        EXPECT_EQ(passes, (std::set<std::string>{"gb", "pt", "acc", "tm"}));
+    }
+
+    const std::string csv = readText(out / "bench.csv");
+    EXPECT_EQ(countOf(csv, "\n"), 3u) << csv;
+    EXPECT_TRUE(contains(csv, "label,file,output,frame_ms_median")) << csv;
+    const std::string md = readText(out / "bench.md");
+    for (const char* s : {"| spp 1 |", "| spp 2 |", "Speedup", "RMSE %", "PSNR", "SSIM",
+                          "Temporal error", "| pt | PathTrace |"})
+        EXPECT_TRUE(contains(md, s)) << s << "\n" << md;
+
+    const std::string svg = readText(out / "bench.svg");
+    EXPECT_EQ(svg.rfind("<svg", 0), 0u) << svg.substr(0, 80);
+    EXPECT_TRUE(contains(svg, "</svg>"));
+    EXPECT_EQ(countOf(svg, "class=\"point\""), 2u);
+    EXPECT_EQ(countOf(svg, "<circle"), countOf(svg, "</circle>"));
+    EXPECT_TRUE(contains(svg, ">spp 1</text>") && contains(svg, ">spp 2</text>"));
+    EXPECT_GE(countOf(svg, "class=\"xtick\""), 2u);
+    EXPECT_GE(countOf(svg, "class=\"ytick\""), 2u);
+
+    // A non-empty DIR needs --overwrite; with it the rendered reference is reused.
+    expectInputError(bench(tmp, tinyBench(), "out"), {"--out", "--overwrite"});
+    Result again = bench(tmp, tinyBench(), "out", {"--overwrite"});
+    ASSERT_EQ(again.code, 0) << again.describe();
+    const json j2 = json::parse(readText(out / "bench.json"));
+    EXPECT_EQ(j2["reference"].at("cached"), true);
+
+    // The cached reference as a file reference: the same errors (deterministic runs).
+    json spec = tinyBench();
+    spec["reference"] = (out / "reference" / "reference.exr").string();
+    Result file = bench(tmp, spec, "file");
+    ASSERT_EQ(file.code, 0) << file.describe();
+    const json j3 = json::parse(readText(tmp / "file" / "bench.json"));
+    EXPECT_EQ(j3["reference"].at("source"), "file");
+    for (size_t g = 0; g < 2; ++g)
+        EXPECT_EQ(j3["graphs"][g]["errors"]["mean"]["rmse"],
+                  j["graphs"][g]["errors"]["mean"]["rmse"]);
+}
+
+TEST(CliBench, BadBenchFilesNameThePointer) {
+    TempDir tmp;
+    struct Case {
+        std::function<void(json&)> edit;
+        std::vector<std::string> fragments;
+    };
+    const std::vector<Case> cases = {
+        {[](json& j) { j.erase("frames"); }, {"missing field 'frames'"}},
+        {[](json& j) { j["size"] = "32x32"; }, {"/size", "[width, height]"}},
+        {[](json& j) { j["frames"] = "3"; }, {"/frames", "integer"}},
+        {[](json& j) { j["warmup"] = 3; }, {"/warmup", "no measured frame"}},
+        {[](json& j) { j["graphs"][1]["file"] = "nope.json"; }, {"/graphs/1/file", "nope.json"}},
+        {[](json& j) { j["graphs"][0]["set"] = {"pt.spq=1"}; }, {"/graphs/0/set", "spq"}},
+        {[](json& j) { j["graphs"][0]["label"] = 7; }, {"/graphs/0/label", "string"}},
+        {[](json& j) { j["graphz"] = j["graphs"]; }, {"/graphz", "did you mean 'graphs'"}},
+        {[](json& j) { j["reference"] = 3; }, {"/reference", "render"}},
+        {[](json& j) { j["reference"] = "missing.exr"; }, {"/reference", "missing.exr"}},
+        {[](json& j) { j["reference"]["render"]["spp"] = 0; }, {"/reference/render/spp"}},
+        {[](json& j) { j["graphs"] = json::array(); }, {"/graphs", "non-empty"}},
+    };
+    for (size_t i = 0; i < cases.size(); ++i) {
+        json spec = tinyBench();
+        cases[i].edit(spec);
+        const std::string name = "case" + std::to_string(i);
+        Result r = bench(tmp, spec, name);
+        std::vector<std::string> fragments = cases[i].fragments;
+        fragments.push_back((tmp / (name + ".bench.json")).string());
+        EXPECT_EQ(r.code, 2) << "case " << i << "\n" << r.describe();
+        for (const auto& f : fragments)
+            EXPECT_TRUE(contains(r.err, f)) << "case " << i << ": '" << f << "'\n" << r.describe();
+        EXPECT_FALSE(fs::exists(tmp / name / "bench.json")) << "case " << i;
+    }
+    writeText(tmp / "broken.json", "{ not json");
+    Result broken = cli({"bench", (tmp / "broken.json").string(), "--out", (tmp / "b").string()});
+    expectInputError(broken, {(tmp / "broken.json").string(), "not valid JSON"});
+}
+
+TEST(CliBench, ShippedBenchFilesParse) {
+    // --out names a regular file: the run stops at the --out check, which comes right after the
+    // bench file parsed (no device, no rendering).
+    TempDir tmp;
+    writeText(tmp / "file", "x");
+    size_t count = 0;
+    for (const auto& e : fs::directory_iterator(kRepo / "graphs" / "benches")) {
+        if (e.path().extension() != ".json") continue;
+        ++count;
+        Result r = cli({"bench", e.path().string(), "--out", (tmp / "file").string()});
+        expectInputError(r, {"--out", "is not a directory"});
+        EXPECT_FALSE(contains(r.err, e.path().filename().string())) << r.describe();
+    }
+    EXPECT_GE(count, 1u);
+}
