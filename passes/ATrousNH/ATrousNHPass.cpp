@@ -14,6 +14,7 @@ namespace fovea::passes {
 namespace {
 const std::vector<std::string> kStepOrders = {"decreasing", "increasing"};
 const std::vector<std::string> kSchedules = {"levels", "layers"};
+const std::vector<std::string> kPositionUnits = {"scene", "depth"};
 constexpr int kMaxIterations = 16;
 // atrous_fill block: uvec4 fillArgs, uvec4 copyArgs, uint holes, uint executed (+ padding).
 constexpr vk::DeviceSize kFillStateBytes = 48;
@@ -60,7 +61,12 @@ void ATrousNHPass::params(graph::ParamVisitor& v) {
           "normal weight exp(-|n_p - n_q|^2 / (step^2 sigma^2)) (Dammertz's code); 0 = off",
           {0.0, 1e30});
     v.add("sigmaPosition", mSigmaPosition, 0.5f,
-          "position weight exp(-|x_p - x_q|^2 / sigma^2), scene units; 0 = off", {0.0, 1e30});
+          "position weight exp(-|x_p - x_q|^2 / sigma^2) in positionUnit; 0 = off", {0.0, 1e30});
+    v.add("positionUnit", mPositionUnit, "scene",
+          "scene: sigmaPosition in scene units (Dammertz); depth: |x_p - x_q| divided by p's "
+          "distance to its eye, so sigmaPosition is a fraction of the view distance and one "
+          "value suits scenes of any scale (e.g. 0.05)",
+          kPositionUnits);
 }
 
 void ATrousNHPass::reflect(graph::Reflection& r) const {
@@ -98,9 +104,10 @@ void ATrousNHPass::compile(graph::CompileContext& ctx) {
     mVariant =
         "layers=" + std::to_string(mLayers) + ",iterations=" + std::to_string(mIterations[0]);
     for (int l = 1; l < mLayers; ++l) mVariant += "/" + std::to_string(mIterations[l]);
-    mVariant += "," + mStepOrder + "," + mSchedule + (mFill ? ",fill" : "") +
-                (mUseMask ? ",mask" : "") + (mUseNormal ? ",normal" : "") +
-                (mUsePosition ? ",position" : "");
+    mVariant +=
+        "," + mStepOrder + "," + mSchedule + (mFill ? ",fill" : "") + (mUseMask ? ",mask" : "") +
+        (mUseNormal ? ",normal" : "") +
+        (mUsePosition ? ",position" + std::string(mPositionUnit == "depth" ? "/depth" : "") : "");
     mPipeline = ctx.createPipeline("atrous_nh/atrous_nh.comp", {}, {"atrous_fill"});
     mFillArgs = ctx.createPipeline("atrous_nh/fill_args.comp", {}, {"atrous_fill"});
     mFillState = std::make_unique<gpu::Buffer>(
@@ -136,7 +143,8 @@ void ATrousNHPass::execute(graph::ExecuteContext& ctx) {
         .set("useMask", int(mUseMask))
         .set("invSigmaColor2", invSquare(mSigmaColor))
         .set("invSigmaNormal2", mUseNormal ? invSquare(mSigmaNormal) : 0.0f)
-        .set("invSigmaPosition2", mUsePosition ? invSquare(mSigmaPosition) : 0.0f);
+        .set("invSigmaPosition2", mUsePosition ? invSquare(mSigmaPosition) : 0.0f)
+        .set("positionRelative", int(mPositionUnit == "depth"));
 
     // Main levels ping-pong between ping and pong and end in `denoised`; they run as plain
     // dispatches (their count is fixed by the parameters).

@@ -33,6 +33,7 @@ private:
     float mSigmaColor = 1.0f;
     float mSigmaNormal = 0.2f;
     float mSigmaPosition = 0.5f;
+    std::string mPositionUnit = "scene";
     bool mUseMask = false, mUseNormal = false, mUsePosition = false;
     std::string mVariant;
     std::unique_ptr<gpu::ComputePipeline> mPipeline;

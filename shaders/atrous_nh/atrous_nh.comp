@@ -11,6 +11,7 @@
 //  - No holes: a pixel without a value takes the mean of the valid taps and becomes valid (a
 //    source for later levels); hole-fill levels (fillOnly) update only such pixels.
 #extension GL_GOOGLE_include_directive : require
+#include "common/camera.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -44,6 +45,7 @@ layout(push_constant) uniform Params {
     float invSigmaColor2;     // 1 / sigma^2; 0 = term off
     float invSigmaNormal2;
     float invSigmaPosition2;
+    int positionRelative;  // 1: position distances in units of p's distance to its eye
 } pc;
 
 // Mask word (FoveationMask): bit 0 sampled (B of Eq. 2), bits 1-2 layer id, bits 16-31 spp.
@@ -99,6 +101,14 @@ void main() {
     vec3 xp = texelFetch(position, p, 0).xyz;
     // The normal term shrinks with the step (Dammertz's reference code); stepWidth >= 1.
     float invN2 = pc.invSigmaNormal2 / float(pc.stepWidth * pc.stepWidth);
+    float invX2 = pc.invSigmaPosition2;
+    if (pc.positionRelative != 0) {
+        // Scale-invariant position term: |x_p - x_q| / |x_p - eye|. The floor keeps the division
+        // finite for a point at the eye (then every other position is far, weight ~0).
+        uint cameraEye = min(uint(eye), max(cameraEyeCount(), 1u) - 1u);
+        vec3 toEye = xp - camera_info.eyes[cameraEye].position.xyz;
+        invX2 /= max(dot(toEye, toEye), 1e-30);
+    }
 
     vec3 sum = vec3(0.0), plainSum = vec3(0.0);
     float cum = 0.0, plainCum = 0.0;
@@ -121,7 +131,7 @@ void main() {
             }
             if (pc.invSigmaPosition2 > 0.0) {
                 vec3 d = xp - texelFetch(position, q, 0).xyz;
-                w *= edgeWeight(dot(d, d), pc.invSigmaPosition2);
+                w *= edgeWeight(dot(d, d), invX2);
             }
             sum += s.rgb * (w * h);
             cum += w * h;

@@ -434,3 +434,22 @@ TEST_F(ATrousNHTest, GpuDrivenFillLevelsMatchReferenceForOddAndEvenLevelCounts) 
     }
     EXPECT_EQ(parities.size(), 2u) << "the cases should cover odd and even fill-level counts";
 }
+
+TEST_F(ATrousNHTest, DepthRelativePositionUnitIsScaleInvariant) {
+    // positionUnit = depth divides |x_p - x_q| by p's distance to its eye (the default camera's
+    // eye is at the origin here), so scaling the scene by 100 leaves the output unchanged; with
+    // scene units the same scaling changes it (so the test can fail).
+    Inputs in = randomInputs(32, 32, 1, 0.6f, 0.4f, 31);
+    for (size_t i = 0; i < in.position.size(); ++i)
+        if (i % 4 != 3) in.position[i] += 3.0f;  // keep every point away from the eye
+    Inputs scaled = in;
+    for (size_t i = 0; i < scaled.position.size(); ++i)
+        if (i % 4 != 3) scaled.position[i] *= 100.0f;
+    const std::string depth = R"({ "layers": 3, "iterations0": 1, "iterations1": 2,
+        "iterations2": 3, "eyes": 1, "positionUnit": "depth", "sigmaPosition": 0.05,
+        "sigmaColor": 0 })";
+    const std::string sceneUnits = R"({ "layers": 3, "iterations0": 1, "iterations1": 2,
+        "iterations2": 3, "eyes": 1, "sigmaPosition": 0.2, "sigmaColor": 0 })";
+    EXPECT_TRUE(near(run(scaled, depth, true), run(in, depth, true), 1e-4f));
+    EXPECT_FALSE(near(run(scaled, sceneUnits, true), run(in, sceneUnits, true), 1e-3f));
+}
