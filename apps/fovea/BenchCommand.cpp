@@ -38,7 +38,8 @@ SceneOptions sceneOptions(const BenchSpec& spec) {
     s.scene = spec.scene;
     s.camera = spec.camera;
     s.stereo = spec.stereo;
-    s.mono = !spec.stereo;  // the bench decides, not the graphs' defaults
+    s.mono = !spec.stereo;       // the bench decides, not the graphs' defaults
+    s.ignoreGraphCamera = true;  // likewise the camera: the bench's path, else a still one
     return s;
 }
 

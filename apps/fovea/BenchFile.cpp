@@ -49,11 +49,14 @@ public:
             out.push_back(string(j[i], pointer + "/" + std::to_string(i)));
         return out;
     }
-    // A path relative to the bench file's folder; must exist.
-    std::string path(const json& j, const std::string& pointer, const char* what) const {
+    // A path relative to the bench file's folder.
+    fs::path resolve(const json& j, const std::string& pointer) const {
         std::string text = string(j, pointer);
-        fs::path p =
-            fs::path(text).is_absolute() ? fs::path(text) : fs::path(mFile).parent_path() / text;
+        return fs::path(text).is_absolute() ? fs::path(text) : fs::path(mFile).parent_path() / text;
+    }
+    // The same, and it must exist.
+    std::string path(const json& j, const std::string& pointer, const char* what) const {
+        fs::path p = resolve(j, pointer);
         if (!fs::exists(p)) fail(pointer, what + std::string(" '") + p.string() + "' not found");
         return p.lexically_normal().string();
     }
@@ -67,7 +70,9 @@ BenchReference parseReference(const Reader& r, const json& j) {
     if (j.is_string() && j.get<std::string>() == "render") {
         ref.render = true;
     } else if (j.is_string()) {
-        ref.file = r.path(j, "/reference", "reference");
+        // Checked when the run starts (after --out): a reference is often rendered into out/
+        // first (scripts/benchmarks.sh), so a bench file may name one that does not exist yet.
+        ref.file = r.resolve(j, "/reference").lexically_normal().string();
     } else if (j.is_object()) {
         r.keys(j, "/reference", {"render"});
         const json& render = r.need(j, "/reference", "render");

@@ -99,9 +99,10 @@ RunScene::RunScene(const SceneOptions& o, const graph::GraphDesc& desc) {
     mRig.ipd = o.ipd;
     mRig.jitter = o.jitter;
     if (!o.gaze.empty()) mGaze = parseGaze(o.gaze);
-    std::string camera = !o.camera.empty()      ? o.camera
-                         : desc.defaults.camera ? relativeToGraph(*desc.defaults.camera, desc)
-                                                : std::string();
+    std::string camera = !o.camera.empty() ? o.camera
+                         : desc.defaults.camera && !o.ignoreGraphCamera
+                             ? relativeToGraph(*desc.defaults.camera, desc)
+                             : std::string();
     if (spec == "none") {
         if (!o.camera.empty()) throw InputError("--camera", "", "a camera needs a scene (--scene)");
         return;

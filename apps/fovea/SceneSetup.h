@@ -32,6 +32,9 @@ struct SceneOptions {
     // Adds a white directional "sun" (3 lux, from above and slightly in front) to the scene:
     // many glTF files carry no light, and path tracing them without one renders black.
     bool sun = false;
+    // fovea bench: ignore the graph's defaults.camera (the bench file names the camera, and
+    // without one the scene's still camera is used for every graph).
+    bool ignoreGraphCamera = false;
 };
 
 // Adds the options above to a subcommand.

@@ -173,3 +173,26 @@ TEST(CliBench, ShippedBenchFilesParse) {
     }
     EXPECT_GE(count, 1u);
 }
+
+TEST(CliBench, BenchCameraOverridesTheGraphsDefaultCamera) {
+    // The bench decides the camera: without one every graph sees the scene's still camera, even
+    // a graph whose defaults.camera names a path (here one that does not exist, so using it
+    // would fail the run). graphs/peres_*.json default to a moving camera path.
+    TempDir tmp;
+    json graph = json::parse(readText(kGraph));
+    graph["defaults"]["camera"] = "no_such_camera_path.json";
+    const fs::path file = tmp / "moving.json";
+    writeText(file, graph.dump(2));
+    json spec = tinyBench();
+    spec["size"] = {16, 16};
+    spec["reference"] = {{"render", {{"spp", 2}}}};
+    spec["graphs"] = {{{"label", "moving"}, {"file", file.string()}}};
+    Result r = bench(tmp, spec, "out");
+    ASSERT_EQ(r.code, 0) << r.describe();
+    EXPECT_EQ(json::parse(readText(tmp / "out" / "bench.json")).at("camera"), "still");
+    // `fovea run` itself does use the graph's camera path (and names the missing file).
+    Result run = cli({"run", file.string(), "--size", "16x16", "--frames", "1", "--out",
+                      (tmp / "run").string(), "--quiet"});
+    EXPECT_NE(run.code, 0);
+    EXPECT_TRUE(contains(run.err, "no_such_camera_path.json")) << run.describe();
+}
