@@ -7,6 +7,9 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <string>
+#include <string_view>
+#include <vector>
 
 #include "apps/fovea/Bench.h"
 
@@ -75,6 +78,30 @@ std::string tickLabel(double v, double step) {
 
 }  // namespace
 
+namespace {
+
+// Splits a title into at most two lines of about `width` characters at spaces (a long bench name
+// plus the device would run off the picture); a longer rest ends in "...".
+// `truncated`: the second line was cut short (the caller appends "...").
+std::vector<std::string> titleLines(const std::string& title, size_t width, bool& truncated) {
+    truncated = false;
+    if (title.size() <= width) return {title};
+    size_t cut = title.rfind(' ', width);
+    if (cut == std::string::npos || cut == 0) cut = width;
+    std::vector<std::string> lines{title.substr(0, cut)};
+    std::string_view rest(title);
+    rest.remove_prefix(std::min(title.size(), cut + 1));
+    if (rest.size() <= width) {
+        lines.emplace_back(rest);
+    } else {
+        lines.emplace_back(rest.substr(0, width - 3));
+        truncated = true;
+    }
+    return lines;
+}
+
+}  // namespace
+
 std::string benchPlotSvg(const std::vector<BenchResult>& results, const std::string& title) {
     double maxMs = 0, maxErr = 0;
     for (const auto& r : results) {
@@ -89,9 +116,14 @@ std::string benchPlotSvg(const std::vector<BenchResult>& results, const std::str
     s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << kWidth << "\" height=\"" << kHeight
       << "\" viewBox=\"0 0 " << kWidth << " " << kHeight
       << "\" font-family=\"Helvetica, Arial, sans-serif\" font-size=\"13\">\n"
-      << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-      << "<text x=\"" << kWidth / 2 << "\" y=\"30\" text-anchor=\"middle\" font-size=\"16\">"
-      << escape(title) << "</text>\n";
+      << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+    // About 8 px per character at 14 px: 84 characters fit the 720 px width with a margin.
+    bool truncated = false;
+    const auto lines = titleLines(title, 84, truncated);
+    for (size_t i = 0; i < lines.size(); ++i)
+        s << "<text x=\"" << kWidth / 2 << "\" y=\"" << (lines.size() == 1 ? 30 : 20 + 18 * i)
+          << "\" text-anchor=\"middle\" font-size=\"14\">" << escape(lines[i])
+          << (truncated && i + 1 == lines.size() ? "..." : "") << "</text>\n";
     // Grid, ticks and tick labels.
     const double xStep = tickStep(xEnd), yStep = tickStep(yEnd);
     for (double v = 0; v <= xEnd + xStep * 1e-6; v += xStep)
