@@ -50,3 +50,21 @@ done
 echo "== PathTrace Mrays/s with exact ray counters (cornell, FlightHelmet + a directional light)"
 "$BUILD/tests/fovea_tests" --gtest_also_run_disabled_tests \
   --gtest_filter='PathTraceTest.DISABLED_BenchmarkMraysPerSecond' | grep '\[ PathTrace \]'
+
+echo "== Peres et al. Tables 3-4 (issue 4): 1024 spp references, then Base / NH2LD / NH3LD"
+for scene in cornell forest; do
+  ref="out/ref/${scene}_480x270/tm.ldr.frame1023.exr"
+  if [ ! -f "$ref" ]; then
+    "$FOVEA" reference --scene "builtin:$scene" --stereo --size 480x270 --spp 1024 \
+      --set pt.maxBounces=1 --out "out/ref/${scene}_480x270" --overwrite --quiet
+  fi
+  "$FOVEA" bench "graphs/benches/peres_$scene.json" --out "$OUT/peres_$scene" --overwrite --quiet
+  cat "$OUT/peres_$scene/bench.md"
+done
+
+echo "== Koskela P2 (BMFR + TAA) vs Peres Base along the Cornell dolly (issue 5)"
+"$FOVEA" bench graphs/benches/koskela_vs_peres_cornell.json --out "$OUT/koskela_vs_peres_cornell" --overwrite --quiet
+cat "$OUT/koskela_vs_peres_cornell/bench.md"
+
+echo "== BMFR per-kernel GPU ms at 128x128 and 256x256 (P2 Table 4 layout)"
+"$BUILD/tests/fovea_tests" --gtest_also_run_disabled_tests --gtest_filter='BMFRBench.*' | grep -v '^\[' || true

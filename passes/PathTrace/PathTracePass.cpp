@@ -150,4 +150,14 @@ std::array<uint64_t, 4> PathTracePass::rayCounts(const gpu::Context& context) co
     return out;
 }
 
+nlohmann::json PathTracePass::statistics(const graph::StatisticsContext& ctx) const {
+    if (!mRayCounter || !mCounterCleared) return nullptr;
+    const auto c = rayCounts(ctx.gpu);
+    return {{"rays_primary", c[0]},
+            {"rays_shadow_primary", c[1]},
+            {"rays_indirect", c[2]},
+            {"rays_shadow_indirect", c[3]},
+            {"rays_total", c[0] + c[1] + c[2] + c[3]}};
+}
+
 }  // namespace fovea::passes

@@ -34,6 +34,8 @@ public:
     // With countRays on: rays traced since the last compile (build), by kind (primary, shadow from
     // the primary hit, indirect, shadow from indirect hits). Waits for the GPU. Zeros otherwise.
     std::array<uint64_t, 4> rayCounts(const gpu::Context& context) const;
+    // report.json: the same counts (with countRays on), by kind and in total.
+    nlohmann::json statistics(const graph::StatisticsContext& ctx) const override;
 
 private:
     int mSpp = 1;

@@ -177,3 +177,25 @@ TEST(CliScene, ReportCarriesPassStatistics) {
     }
     EXPECT_TRUE(found);
 }
+
+TEST(CliScene, ReportCarriesPathTraceRayCounts) {
+    // PathTrace with countRays: report.json has the counts; graphs/reference.json casts its own
+    // primary rays, one per pixel and frame (16 x 16 x 2 frames).
+    TempDir tmp;
+    Result r = cli({"run", (kRepo / "graphs" / "reference.json").string(), "--size", "16x16",
+                    "--frames", "2", "--save-frames", "none", "--set", "pt.countRays=true",
+                    "--out", (tmp / "r").string(), "--quiet"});
+    ASSERT_EQ(r.code, 0) << r.describe();
+    json report = readReport(tmp / "r");
+    for (const auto& p : report.at("passes")) {
+        if (p.at("type") != "PathTrace") continue;
+        const json& s = p.at("statistics");
+        EXPECT_EQ(s.at("rays_primary"), 512);
+        EXPECT_EQ(s.at("rays_total").get<uint64_t>(),
+                  s.at("rays_primary").get<uint64_t>() +
+                      s.at("rays_shadow_primary").get<uint64_t>() +
+                      s.at("rays_indirect").get<uint64_t>() +
+                      s.at("rays_shadow_indirect").get<uint64_t>());
+        EXPECT_GT(s.at("rays_indirect").get<uint64_t>(), 0u);
+    }
+}
