@@ -15,8 +15,10 @@ void memoryBarrier(const vk::raii::CommandBuffer& cmd, vk::PipelineStageFlags2 s
 void computeToComputeBarrier(const vk::raii::CommandBuffer& cmd) {
     constexpr auto kStorage =
         vk::AccessFlagBits2::eShaderStorageRead | vk::AccessFlagBits2::eShaderStorageWrite;
+    // Sampled reads too: a later dispatch may read through a sampler what an earlier one stored.
     memoryBarrier(cmd, vk::PipelineStageFlagBits2::eComputeShader, kStorage,
-                  vk::PipelineStageFlagBits2::eComputeShader, kStorage);
+                  vk::PipelineStageFlagBits2::eComputeShader,
+                  kStorage | vk::AccessFlagBits2::eShaderSampledRead);
 }
 
 void computeToIndirectBarrier(const vk::raii::CommandBuffer& cmd) {

@@ -11,7 +11,8 @@ void memoryBarrier(const vk::raii::CommandBuffer& cmd, vk::PipelineStageFlags2 s
                    vk::AccessFlags2 dstAccess);
 
 // Storage reads and writes of earlier dispatches complete and are visible before the next
-// dispatch reads or writes (ping-pong levels, producer/consumer kernels of one pass).
+// dispatch reads (as storage or through a sampler) or writes (ping-pong levels, producer/consumer
+// kernels of one pass).
 void computeToComputeBarrier(const vk::raii::CommandBuffer& cmd);
 
 // A dispatch wrote indirect arguments (and storage data) that the next dispatch consumes, either

@@ -5,6 +5,7 @@
 #include <glm/gtc/packing.hpp>
 
 #include "core/util/Error.h"
+#include "core/vk/Barriers.h"
 #include "core/vk/Context.h"
 #include "core/vk/Formats.h"
 
@@ -88,16 +89,6 @@ void imageBarrier(const vk::raii::CommandBuffer& cmd, vk::Image image, vk::Image
                                     .subresourceRange = kColorRange};
     cmd.pipelineBarrier2(
         vk::DependencyInfo{.imageMemoryBarrierCount = 1, .pImageMemoryBarriers = &barrier});
-}
-
-void memoryBarrier(const vk::raii::CommandBuffer& cmd, vk::PipelineStageFlags2 srcStage,
-                   vk::AccessFlags2 srcAccess, vk::PipelineStageFlags2 dstStage,
-                   vk::AccessFlags2 dstAccess) {
-    vk::MemoryBarrier2 barrier{.srcStageMask = srcStage,
-                               .srcAccessMask = srcAccess,
-                               .dstStageMask = dstStage,
-                               .dstAccessMask = dstAccess};
-    cmd.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &barrier});
 }
 
 enum class Component { F32, F16, Unorm8, U32 };

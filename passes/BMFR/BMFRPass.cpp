@@ -1,6 +1,7 @@
 #include "passes/BMFR/BMFRPass.h"
 
 #include "core/util/Error.h"
+#include "core/vk/Barriers.h"
 #include "core/vk/ComputePipeline.h"
 #include "core/vk/Timestamps.h"
 
@@ -17,22 +18,6 @@ constexpr int kOffsets[BMFRPass::kOffsetCount][2] = {
 constexpr uint32_t kStatsBytes = 16;  // uint counters[4]
 constexpr uint32_t kCoefStride = 96;  // floats per block (bmfr_common.glsl)
 constexpr float kMaxCount = 255.0f;   // P2 §3.2: the count is only needed while small (8 bits)
-
-void computeBarrier(const vk::raii::CommandBuffer& cmd, vk::PipelineStageFlags2 src,
-                    vk::AccessFlags2 srcAccess) {
-    vk::MemoryBarrier2 b{.srcStageMask = src,
-                         .srcAccessMask = srcAccess,
-                         .dstStageMask = vk::PipelineStageFlagBits2::eComputeShader,
-                         .dstAccessMask = vk::AccessFlagBits2::eShaderStorageRead |
-                                          vk::AccessFlagBits2::eShaderStorageWrite |
-                                          vk::AccessFlagBits2::eShaderSampledRead};
-    cmd.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &b});
-}
-
-void dispatchBarrier(const vk::raii::CommandBuffer& cmd) {
-    computeBarrier(cmd, vk::PipelineStageFlagBits2::eComputeShader,
-                   vk::AccessFlagBits2::eShaderStorageWrite);
-}
 
 // History images, two slots each: frame f writes slot f % 2 and reads the other.
 enum History { kPosition, kNormal, kAccum, kFiltered };
@@ -193,8 +178,10 @@ void BMFRPass::execute(graph::ExecuteContext& ctx) {
     if (!history) {
         // Counters restart with the history (cumulative since the last reset).
         cmd.fillBuffer(ctx.buffer("stats").buffer(), 0, VK_WHOLE_SIZE, 0u);
-        computeBarrier(cmd, vk::PipelineStageFlagBits2::eTransfer,
-                       vk::AccessFlagBits2::eTransferWrite);
+        gpu::memoryBarrier(
+            cmd, vk::PipelineStageFlagBits2::eTransfer, vk::AccessFlagBits2::eTransferWrite,
+            vk::PipelineStageFlagBits2::eComputeShader,
+            vk::AccessFlagBits2::eShaderStorageRead | vk::AccessFlagBits2::eShaderStorageWrite);
     }
     if (mTimestamps) {
         mTimestamps->reset(cmd);
@@ -220,7 +207,7 @@ void BMFRPass::execute(graph::ExecuteContext& ctx) {
         .set("positionThreshold", mPositionThreshold)
         .set("normalThreshold", mNormalThreshold);
     mAccumulate->dispatch(cmd, out.width(), out.height());
-    dispatchBarrier(cmd);
+    gpu::computeToComputeBarrier(cmd);
     stamp(1);
 
     // (II) fit: one workgroup of 256 threads per block.
@@ -237,7 +224,7 @@ void BMFRPass::execute(graph::ExecuteContext& ctx) {
         .set("epsilon", mEpsilon)
         .set("dropTolerance", mDropTolerance);
     mFit->dispatch(cmd, uint32_t(mBlocksX * mBlocksY) * 256u, 1);
-    dispatchBarrier(cmd);
+    gpu::computeToComputeBarrier(cmd);
     stamp(2);
 
     // (II) weighted sum with the noise-free features.
@@ -247,7 +234,7 @@ void BMFRPass::execute(graph::ExecuteContext& ctx) {
         .set("offset", glm::ivec2(offset[0], offset[1]))
         .set("blocksX", mBlocksX);
     mWeightedSum->dispatch(cmd, out.width(), out.height());
-    dispatchBarrier(cmd);
+    gpu::computeToComputeBarrier(cmd);
     stamp(3);
 
     // (III) second accumulation + remodulation.
