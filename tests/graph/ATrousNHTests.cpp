@@ -21,6 +21,7 @@
 #include "core/vk/Resources.h"
 #include "passes/ATrousNH/ATrousNHPass.h"
 #include "tests/graph/ATrousReference.h"
+#include "tests/graph/FeedPass.h"
 #include "tests/unit/GpuTestFixture.h"
 
 using namespace fovea;
@@ -31,25 +32,14 @@ using fovea::passes::buildATrousSchedule;
 
 namespace {
 
-// Test-only source: declares the denoiser's inputs; the test uploads their content.
-class FeedPass : public Pass {
-public:
-    void reflect(Reflection& r) const override {
-        r.output("color", vk::Format::eR32G32B32A32Sfloat).persistent();
-        r.output("normal", vk::Format::eR16G16B16A16Sfloat).persistent();  // as GBuffer's
-        r.output("position", vk::Format::eR32G32B32A32Sfloat).persistent();
-        r.output("mask", vk::Format::eR32Uint).persistent();
-    }
-    void execute(ExecuteContext&) override {}
-};
-
+// Feed (tests/graph/FeedPass.h) declares the denoiser's inputs; the test uploads their content.
 const PassRegistry& registry() {
-    static PassRegistry r = [] {
-        PassRegistry reg;
-        reg.add({"Feed", "", [] { return std::make_unique<FeedPass>(); }});
-        reg.add({"ATrousNH", "", [] { return std::make_unique<passes::ATrousNHPass>(); }});
-        return reg;
-    }();
+    // Normals in GBuffer's format.
+    static PassRegistry r = test::feedRegistry<passes::ATrousNHPass>(
+        "ATrousNH", {{"color", vk::Format::eR32G32B32A32Sfloat},
+                     {"normal", vk::Format::eR16G16B16A16Sfloat},
+                     {"position", vk::Format::eR32G32B32A32Sfloat},
+                     {"mask", vk::Format::eR32Uint}});
     return r;
 }
 

@@ -6,6 +6,7 @@
 #include "core/graph/GraphDesc.h"
 #include "core/graph/PassRegistry.h"
 #include "core/vk/Resources.h"
+#include "tests/graph/FeedPass.h"
 
 namespace fovea::testbmfr {
 
@@ -13,27 +14,15 @@ namespace {
 
 using namespace fovea::graph;
 
-class FeedPass : public Pass {
-public:
-    void reflect(Reflection& r) const override {
-        // Formats as GBuffer / PathTrace produce them.
-        r.output("color", vk::Format::eR32G32B32A32Sfloat).persistent();
-        r.output("position", vk::Format::eR32G32B32A32Sfloat).persistent();
-        r.output("normal", vk::Format::eR16G16B16A16Sfloat).persistent();
-        r.output("albedo", vk::Format::eR16G16B16A16Sfloat).persistent();
-        r.output("emission", vk::Format::eR16G16B16A16Sfloat).persistent();
-        r.output("motion", vk::Format::eR16G16Sfloat).persistent();
-    }
-    void execute(ExecuteContext&) override {}
-};
-
 const PassRegistry& registry() {
-    static PassRegistry r = [] {
-        PassRegistry reg;
-        reg.add({"Feed", "", [] { return std::make_unique<FeedPass>(); }});
-        reg.add({"BMFR", "", [] { return std::make_unique<passes::BMFRPass>(); }});
-        return reg;
-    }();
+    // Formats as GBuffer / PathTrace produce them.
+    static PassRegistry r =
+        test::feedRegistry<passes::BMFRPass>("BMFR", {{"color", vk::Format::eR32G32B32A32Sfloat},
+                                                      {"position", vk::Format::eR32G32B32A32Sfloat},
+                                                      {"normal", vk::Format::eR16G16B16A16Sfloat},
+                                                      {"albedo", vk::Format::eR16G16B16A16Sfloat},
+                                                      {"emission", vk::Format::eR16G16B16A16Sfloat},
+                                                      {"motion", vk::Format::eR16G16Sfloat}});
     return r;
 }
 

@@ -23,6 +23,7 @@
 #include "core/scene/SceneGpu.h"
 #include "core/vk/Resources.h"
 #include "passes/TAA/TAAPass.h"
+#include "tests/graph/FeedPass.h"
 #include "tests/unit/GpuTestFixture.h"
 
 using namespace fovea;
@@ -30,22 +31,10 @@ using namespace fovea::graph;
 
 namespace {
 
-class FeedPass : public Pass {
-public:
-    void reflect(Reflection& r) const override {
-        r.output("color", vk::Format::eR32G32B32A32Sfloat).persistent();
-        r.output("motion", vk::Format::eR16G16Sfloat).persistent();  // as GBuffer's
-    }
-    void execute(ExecuteContext&) override {}
-};
-
 const PassRegistry& registry() {
-    static PassRegistry r = [] {
-        PassRegistry reg;
-        reg.add({"Feed", "", [] { return std::make_unique<FeedPass>(); }});
-        reg.add({"TAA", "", [] { return std::make_unique<passes::TAAPass>(); }});
-        return reg;
-    }();
+    // Motion in GBuffer's format.
+    static PassRegistry r = test::feedRegistry<passes::TAAPass>(
+        "TAA", {{"color", vk::Format::eR32G32B32A32Sfloat}, {"motion", vk::Format::eR16G16Sfloat}});
     return r;
 }
 
