@@ -1,5 +1,7 @@
 // The explicit list of built-in pass types (ARCHITECTURE "Pass contract"). Adding a pass = one
 // line here + passes/<Name>/ + shaders/<name>/ + docs/passes/<Name>.md.
+#include "passes/RegisterPasses.h"
+
 #include "core/graph/PassRegistry.h"
 #include "passes/ATrousNH/ATrousNHPass.h"
 #include "passes/Accumulate/AccumulatePass.h"

@@ -78,6 +78,9 @@ int validateCommand(const ValidateOptions& options);
 
 struct PassesOptions {
     bool json = false;
+    bool markdown = false;   // the generated doc tables of each type
+    std::string updateDocs;  // rewrite the generated tables of DIR/<Type>.md
+    std::string checkDocs;   // exit 1 when a page in DIR is stale or missing
     std::string type;
 };
 void addPassesCommand(CLI::App& app, PassesOptions& options);

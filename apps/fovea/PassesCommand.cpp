@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "apps/fovea/Commands.h"
+#include "apps/fovea/PassDocs.h"
 #include "core/graph/PassRegistry.h"
 #include "core/util/DidYouMean.h"
 #include "core/util/Error.h"
@@ -14,9 +15,26 @@ void addPassesCommand(CLI::App& app, PassesOptions& o) {
     auto* cmd = app.add_subcommand("passes", "list pass types, their fields and parameters");
     cmd->add_option("type", o.type, "show only this pass type");
     cmd->add_flag("--json", o.json, "machine-readable output");
+    cmd->add_flag("--markdown", o.markdown,
+                  "the field and parameter tables of docs/passes/<Type>.md, as generated");
+    cmd->add_option("--update-docs", o.updateDocs,
+                    "rewrite the generated tables in DIR/<Type>.md for every pass type");
+    cmd->add_option("--check-docs", o.checkDocs,
+                    "exit 1 naming every page of DIR whose generated tables are stale or missing");
 }
 
 namespace {
+
+// "16 + 8 per pixel" style text of a buffer size rule.
+std::string bufferRule(const graph::BufferSize& b) {
+    std::string text = std::to_string(b.header) + " B";
+    if (b.perPixel) text += " + " + std::to_string(b.perPixel) + " B per pixel";
+    if (b.block)
+        text += " + " + std::to_string(b.perBlock) + " B per " + std::to_string(b.block) + "x" +
+                std::to_string(b.block) + " block" +
+                (b.extraBlocks ? " (+" + std::to_string(b.extraBlocks) + " per axis)" : "");
+    return text;
+}
 
 nlohmann::json describePass(const graph::PassTypeInfo& info) {
     auto pass = info.create();
@@ -35,9 +53,11 @@ nlohmann::json describePass(const graph::PassTypeInfo& info) {
             {"size", graph::sizeRuleName(f.size)},
             {"optional", f.optional},
             {"persistent", f.persistent},
+            {"history", f.historyFrames},
             {"doc", f.doc}};
         if (f.size == graph::SizeRule::SameAsInput) jf["same_as"] = f.sameAs;
         if (f.size == graph::SizeRule::Scaled) jf["scale"] = f.scale;
+        if (f.size == graph::SizeRule::Buffer) jf["buffer"] = bufferRule(f.buffer);
         fields.push_back(jf);
     }
     return {{"type", info.type},
@@ -62,6 +82,22 @@ int passesCommand(const PassesOptions& o) {
     }
     nlohmann::json all = nlohmann::json::array();
     for (const auto& t : types) all.push_back(describePass(*registry.find(t)));
+    if (!o.updateDocs.empty() || !o.checkDocs.empty()) {
+        const bool write = !o.updateDocs.empty();
+        const auto problems = syncPassDocs(write ? o.updateDocs : o.checkDocs, all, write);
+        for (const auto& p : problems) std::cerr << "error: " << p << "\n";
+        if (problems.empty())
+            std::cout << "pass docs: " << all.size() << " pages " << (write ? "updated" : "current")
+                      << "\n";
+        return problems.empty() ? kExitOk : kExitRuntime;
+    }
+    if (o.markdown) {
+        for (const auto& p : all)
+            std::cout << "## " << p["type"].get<std::string>() << "\n\n### Fields\n\n"
+                      << fieldsMarkdown(p) << "\n### Parameters\n\n"
+                      << paramsMarkdown(p) << "\n";
+        return kExitOk;
+    }
     if (o.json) {
         std::cout << all.dump(2) << "\n";
         return kExitOk;
@@ -73,8 +109,11 @@ int passesCommand(const PassesOptions& o) {
                       << f["name"].get<std::string>() << "  [" << f["format"].get<std::string>()
                       << ", " << f["size"].get<std::string>()
                       << (f["optional"].get<bool>() ? ", optional" : "")
-                      << (f["persistent"].get<bool>() ? ", persistent" : "") << "]  "
-                      << f["doc"].get<std::string>() << "\n";
+                      << (f["persistent"].get<bool>() ? ", persistent" : "")
+                      << (f["history"].get<uint32_t>() > 0
+                              ? ", keeps " + f["history"].dump() + " previous frame(s)"
+                              : "")
+                      << "]  " << f["doc"].get<std::string>() << "\n";
         for (const auto& q : p["params"]) {
             std::cout << "    param " << q["name"].get<std::string>() << " ("
                       << q["type"].get<std::string>() << ", default " << q["default"].dump();

@@ -60,6 +60,7 @@ nlohmann::json buildReport(const graph::RenderGraph& graph, const ReportInputs& 
          {{"transient_bytes", plan.transientBytes()},
           {"transient_bytes_without_aliasing", plan.transientBytesWithoutAliasing()},
           {"persistent_bytes", plan.persistentBytes()},
+          {"history_bytes", plan.historyBytes()},
           {"allocated_transient_bytes", graph.allocatedTransientBytes()},
           {"allocated_persistent_bytes", graph.allocatedPersistentBytes()}}},
         {"frame_ms", statsJson(computeStats(in.frameGpuMs))},

@@ -7,6 +7,7 @@
 #include "core/graph/PassRegistry.h"
 #include "core/util/DidYouMean.h"
 #include "core/util/Error.h"
+#include "passes/RegisterPasses.h"
 
 namespace {
 

@@ -16,6 +16,9 @@ void checkEdges(const GraphDesc& desc, CompiledPlan& plan);
 // 4. Culling with reasons: disabled, scene needs unmet, required input from a culled pass
 //    (propagated), reaches no marked output.
 void cullPasses(CompiledPlan& plan);
+// 4b. Pass::validate on every alive pass: parameters against each other, the connected edges, the
+//     render size and the scene (errors name /passes/i/params/<name>).
+void validatePasses(CompiledPlan& plan);
 // 5. Deterministic topological order of alive passes (ties: graph-file order).
 void orderPasses(CompiledPlan& plan);
 // 6. One resource per alive output/internal: size, format, lifetime class, ring size, first and
@@ -26,7 +29,7 @@ void aliasResources(CompiledPlan& plan);
 // 8. Barriers between passes: read-after-write and aliasing hand-overs, with reasons.
 void planBarriers(CompiledPlan& plan);
 
-// Runs 1..8.
+// Runs 1..8 (with 4b).
 CompiledPlan compileGraphPlan(const GraphDesc& desc, const PassRegistry& registry,
                               const CompileOptions& options);
 

@@ -35,7 +35,11 @@ std::unique_ptr<gpu::ComputePipeline> GraphCompileContext::createPipeline(
     auto pipeline = std::make_unique<gpu::ComputePipeline>(mGraph.gpu(), shaderPath, defines);
     const PassNode& node = mPlan.nodes[mNode];
     std::vector<std::string> names = extraResources;
-    for (const auto& f : node.reflection.fields()) names.push_back(f.name);
+    for (const auto& f : node.reflection.fields()) {
+        names.push_back(f.name);
+        for (uint32_t back = 1; back <= f.historyFrames; ++back)
+            names.push_back(previousBindingName(f.name, back));
+    }
     // Binding by name: every resource the shader declares must be a field of the pass (or one
     // the pass binds itself). Catching it here turns a silent unbound descriptor into an error.
     for (const auto& b : pipeline->interface().bindings) {
@@ -79,8 +83,12 @@ const gpu::Buffer& GraphExecuteContext::buffer(const std::string& field) {
     return mGraph.bufferFor(mNode, field);
 }
 
-bool GraphExecuteContext::historyValid(const std::string& input) const {
-    return mGraph.historyValidFor(mNode, input);
+bool GraphExecuteContext::historyValid(const std::string& field, uint32_t framesBack) const {
+    return mGraph.historyValidFor(mNode, field, framesBack);
+}
+
+const gpu::Image& GraphExecuteContext::previous(const std::string& field, uint32_t framesBack) {
+    return mGraph.previousFor(mNode, field, framesBack);
 }
 
 void GraphExecuteContext::bindFields(gpu::ComputePipeline& pipeline) {
@@ -89,7 +97,14 @@ void GraphExecuteContext::bindFields(gpu::ComputePipeline& pipeline) {
     if (mGraph.scene()) mGraph.scene()->bind(pipeline);
     for (const auto& b : pipeline.interface().bindings) {
         const FieldDesc* f = node.reflection.find(b.name);
-        if (!f) continue;  // bound by the pass itself (checked at compile)
+        if (!f) {
+            // prev_<field> / prev<N>_<field>: a previous frame of a field with declared history.
+            if (auto [field, back] = parsePreviousBindingName(b.name); back > 0) {
+                const FieldDesc* h = node.reflection.find(field);
+                if (h && back <= h->historyFrames) pipeline.bind(b.name, previous(field, back));
+            }
+            continue;  // otherwise bound by the pass itself (checked at compile)
+        }
         bool isBuffer = b.kind == gpu::DescriptorKind::StorageBuffer ||
                         b.kind == gpu::DescriptorKind::UniformBuffer;
         if (f->kind == FieldKind::Input && !connected(f->name)) {

@@ -39,7 +39,8 @@ public:
     bool connected(const std::string& input) const override;
     const gpu::Image& image(const std::string& field) override;
     const gpu::Buffer& buffer(const std::string& field) override;
-    bool historyValid(const std::string& input) const override;
+    bool historyValid(const std::string& field, uint32_t framesBack) const override;
+    const gpu::Image& previous(const std::string& field, uint32_t framesBack) override;
     void bindFields(gpu::ComputePipeline& pipeline) override;
     const scene::SceneGpu* scene() const override;
     const scene::FrameCamera& camera() const override;

@@ -48,7 +48,10 @@ struct ResourcePlan {
     vk::Format format = vk::Format::eUndefined;
     uint64_t bufferBytes = 0;
     Lifetime lifetime = Lifetime::Transient;
-    uint32_t ringSize = 1;            // history: max delay + 1
+    uint32_t ringSize = 1;  // history: max delay + 1
+    // Previous frames the producing pass declared (FieldDesc::historyFrames); delay edges that
+    // read it may ask for more (ringSize covers both).
+    uint32_t declaredHistory = 0;
     int firstUse = -1, lastUse = -1;  // positions in the execution order
     int aliasGroup = -1;
     uint64_t bytes() const;  // estimated size (images: w*h*bytes per pixel)
@@ -89,6 +92,7 @@ struct CompiledPlan {
     uint64_t transientBytes() const;    // with aliasing
     uint64_t transientBytesWithoutAliasing() const;
     uint64_t persistentBytes() const;  // outputs, history rings, persistent
+    uint64_t historyBytes() const;     // of which previous-frame slots of history rings
 };
 
 }  // namespace fovea::graph

@@ -14,6 +14,7 @@
 
 #include "core/graph/Param.h"
 #include "core/graph/Reflection.h"
+#include "core/scene/SceneFeatures.h"
 #include "core/vk/ComputePipeline.h"
 #include "core/vk/Resources.h"
 
@@ -31,16 +32,15 @@ struct FrameCamera;
 
 namespace fovea::graph {
 
-// Scene features a pass can require. A pass whose needs the loaded scene does not meet is culled
-// (with a reason) instead of running on missing data.
-enum SceneFeature : uint32_t {
-    kSceneGeometry = 1u << 0,  // any triangles at all (a scene was loaded)
-    kSceneEmissive = 1u << 1,  // emissive triangles
-    kSceneTextures = 1u << 2,  // textured materials
-    kScenePunctual = 1u << 3,  // point/spot/directional lights
-    kSceneStereo = 1u << 4,    // a stereo camera rig
-};
-std::vector<std::string> sceneFeatureNames(uint32_t mask);
+// Scene features a pass can require (core/scene/SceneFeatures.h). A pass whose needs the loaded
+// scene does not meet is culled (with a reason) instead of running on missing data.
+using scene::kSceneEmissive;
+using scene::kSceneGeometry;
+using scene::kScenePunctual;
+using scene::kSceneStereo;
+using scene::kSceneTextures;
+using scene::SceneFeature;
+using scene::sceneFeatureNames;
 
 struct FrameInfo {
     uint64_t index = 0;             // frames since the run started
@@ -88,9 +88,16 @@ public:
     // The image behind a field (input: the connected source's current or delayed image).
     virtual const gpu::Image& image(const std::string& field) = 0;
     virtual const gpu::Buffer& buffer(const std::string& field) = 0;
-    // False for a delayed input whose history does not exist yet (first frames, reset, resize,
-    // camera cut); true for any other connected input.
-    virtual bool historyValid(const std::string& input) const = 0;
+    // An input: false for a delayed input whose history does not exist yet (first frames,
+    // reset, resize, camera cut); true for any other connected input.
+    // An output/internal with declared history (FieldBuilder::history): true when previous(field,
+    // framesBack) holds a frame written since the last reset, cut or resize (a rebuild that keeps
+    // the field's name, size, format and ring, e.g. a parameter change, keeps it valid).
+    virtual bool historyValid(const std::string& field, uint32_t framesBack = 1) const = 0;
+    // The image of an output/internal with declared history as written `framesBack` frames ago
+    // (1..historyFrames). Its content is undefined while historyValid() is false. Shaders get it
+    // from bindFields as `prev_<field>` (framesBack 1) or `prev<N>_<field>`.
+    virtual const gpu::Image& previous(const std::string& field, uint32_t framesBack = 1) = 0;
     // Binds every shader resource whose name is a connected field of this pass, plus the scene
     // buffers (scene_*) and the frame camera (camera_info) when the shader declares them.
     virtual void bindFields(gpu::ComputePipeline& pipeline) = 0;
@@ -105,6 +112,18 @@ struct StatisticsContext {
     std::function<const gpu::Buffer&(const std::string& field)> buffer;
 };
 
+// Handed to Pass::validate during compile (CPU only: `fovea validate` runs it too).
+class ValidateContext {
+public:
+    virtual ~ValidateContext() = default;
+    virtual bool connected(const std::string& input) const = 0;
+    virtual uint32_t width() const = 0;  // render size
+    virtual uint32_t height() const = 0;
+    virtual uint32_t sceneFeatures() const = 0;  // SceneFeature bits of the loaded scene
+    // Throws the input error (exit 2) naming the graph file and /passes/<i>/params/<param>.
+    [[noreturn]] virtual void fail(const std::string& param, const std::string& message) const = 0;
+};
+
 class Pass {
 public:
     virtual ~Pass() = default;
@@ -112,6 +131,13 @@ public:
     virtual void params(ParamVisitor&) {}
     virtual void reflect(Reflection& r) const = 0;
     virtual uint32_t sceneNeeds() const { return 0; }
+    // True when the outputs depend on the frame camera (pose, gaze, eyes) without needing scene
+    // geometry: the camera then enters the cache key, and the pass is not culled without a scene.
+    // Passes with sceneNeeds() != 0 see the camera anyway.
+    virtual bool usesCamera() const { return false; }
+    // Checks parameters against each other and against the connected edges during compile (so
+    // `fovea validate` rejects what `fovea run` would, with exit 2 and the parameter's pointer).
+    virtual void validate(const ValidateContext&) const {}
     virtual void compile(CompileContext&) {}
     virtual void execute(ExecuteContext& ctx) = 0;
 

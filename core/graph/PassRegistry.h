@@ -1,5 +1,5 @@
 // The one global of fovea: the table of pass types. Filled explicitly by
-// registerBuiltinPasses() (passes/RegisterPasses.cpp); core never names a concrete pass.
+// registerBuiltinPasses() (passes/RegisterPasses.h); core never names a concrete pass.
 #pragma once
 #include <functional>
 #include <map>
@@ -32,8 +32,3 @@ private:
 PassRegistry& passRegistry();
 
 }  // namespace fovea::graph
-
-namespace fovea {
-// Defined in passes/: registers every built-in pass type (idempotent).
-void registerBuiltinPasses();
-}  // namespace fovea

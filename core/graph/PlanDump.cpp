@@ -32,6 +32,7 @@ nlohmann::json dumpPlanJson(const CompiledPlan& plan) {
                    {"last_use", r.lastUse},
                    {"alias_group", r.aliasGroup},
                    {"ring", r.ringSize},
+                   {"declared_history", r.declaredHistory},
                    {"bytes", r.bytes()}};
         if (r.isImage) {
             jr["size"] = {r.width, r.height};
@@ -61,7 +62,8 @@ nlohmann::json dumpPlanJson(const CompiledPlan& plan) {
     j["barriers"] = barriers;
     j["memory"] = {{"transient_bytes", plan.transientBytes()},
                    {"transient_bytes_without_aliasing", plan.transientBytesWithoutAliasing()},
-                   {"persistent_bytes", plan.persistentBytes()}};
+                   {"persistent_bytes", plan.persistentBytes()},
+                   {"history_bytes", plan.historyBytes()}};
     return j;
 }
 
@@ -92,13 +94,16 @@ std::string dumpPlanText(const CompiledPlan& plan) {
             s << "buffer " << r.bufferBytes << " B";
         s << "  " << lifetimeName(r.lifetime);
         if (r.ringSize > 1) s << " ring " << r.ringSize;
+        if (r.declaredHistory > 0)
+            s << " (pass keeps " << r.declaredHistory << " previous frame"
+              << (r.declaredHistory > 1 ? "s" : "") << ")";
         s << "  live [" << r.firstUse << ", " << r.lastUse << "]";
         if (r.aliasGroup >= 0) s << "  alias group " << r.aliasGroup;
         s << "\n";
     }
     s << "\nmemory: transient " << plan.transientBytes() << " B (without aliasing "
       << plan.transientBytesWithoutAliasing() << " B), persistent " << plan.persistentBytes()
-      << " B\n";
+      << " B (of which history " << plan.historyBytes() << " B)\n";
     return s.str();
 }
 

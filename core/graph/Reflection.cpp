@@ -4,6 +4,16 @@
 
 namespace fovea::graph {
 
+uint64_t BufferSize::bytes(uint32_t width, uint32_t height) const {
+    uint64_t total = header + perPixel * uint64_t(width) * height;
+    if (block > 0) {
+        const uint64_t across = (uint64_t(width) + block - 1) / block + extraBlocks;
+        const uint64_t down = (uint64_t(height) + block - 1) / block + extraBlocks;
+        total += perBlock * across * down;
+    }
+    return total;
+}
+
 FieldBuilder Reflection::add(const std::string& name, FieldKind kind, vk::Format format,
                              SizeRule rule) {
     // A pass author's mistake, caught the first time the pass is reflected (tests reflect all).
@@ -39,6 +49,26 @@ std::vector<std::string> Reflection::names(FieldKind kind) const {
     for (const auto& f : mFields)
         if (f.kind == kind) out.push_back(f.name);
     return out;
+}
+
+std::string previousBindingName(const std::string& field, uint32_t framesBack) {
+    return (framesBack == 1 ? std::string("prev") : "prev" + std::to_string(framesBack)) + "_" +
+           field;
+}
+
+std::pair<std::string, uint32_t> parsePreviousBindingName(const std::string& name) {
+    if (name.rfind("prev", 0) != 0) return {"", 0};
+    size_t underscore = name.find('_', 4);
+    if (underscore == std::string::npos || underscore + 1 >= name.size()) return {"", 0};
+    const std::string digits = name.substr(4, underscore - 4);
+    uint32_t back = 1;
+    if (!digits.empty()) {
+        if (digits.size() > 3 || digits.find_first_not_of("0123456789") != std::string::npos)
+            return {"", 0};
+        back = uint32_t(std::stoul(digits));
+        if (back < 2) return {"", 0};  // "prev1_x" is spelled "prev_x"
+    }
+    return {name.substr(underscore + 1), back};
 }
 
 const char* fieldKindName(FieldKind kind) {

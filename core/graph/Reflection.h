@@ -4,6 +4,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 #include <vulkan/vulkan.hpp>
 
@@ -17,7 +18,20 @@ enum class SizeRule {
     Scaled,       // render size * scale (rounded up, at least 1)
     Fixed,        // width x height
     SameAsInput,  // the size of input `sameAs`
-    Buffer,       // a storage buffer of `bufferBytes` bytes, not an image
+    Buffer,       // a storage buffer (not an image) of BufferSize bytes
+};
+
+// Bytes of a buffer field: a fixed part plus parts that follow the render size, so a buffer that
+// holds one entry per pixel or per block never needs a user-facing capacity parameter.
+// bytes = header + perPixel * width * height
+//       + perBlock * (ceil(width / block) + extraBlocks) * (ceil(height / block) + extraBlocks)
+struct BufferSize {
+    uint64_t header = 0;
+    uint64_t perPixel = 0;
+    uint64_t perBlock = 0;
+    uint32_t block = 0;        // block edge in pixels (0 = no per-block part)
+    uint32_t extraBlocks = 0;  // blocks added per axis (e.g. one more for a moving block grid)
+    uint64_t bytes(uint32_t width, uint32_t height) const;
 };
 
 struct FieldDesc {
@@ -28,9 +42,13 @@ struct FieldDesc {
     float scale = 1.0f;
     uint32_t width = 0, height = 0;
     std::string sameAs;
-    uint64_t bufferBytes = 0;
+    BufferSize buffer;
     bool optional = false;    // inputs: may stay unconnected
     bool persistent = false;  // outputs/internals: content survives between frames (never aliased)
+    // Outputs/internals (images): the graph keeps this many previous frames of the field. The pass
+    // reads them with ExecuteContext::previous (shaders: `prev_<field>`, `prev2_<field>`, ...),
+    // writes only this frame's image, and asks historyValid() whether they hold a frame yet.
+    uint32_t historyFrames = 0;
     // Inputs: the shader reads it as float (sampler2D / image2D), so an integer-format image
     // (r32ui, ...) cannot be bound; the compiler rejects such an edge naming pass and field.
     bool floatOnly = false;
@@ -59,8 +77,28 @@ public:
         return rule(SizeRule::SameAsInput);
     }
     FieldBuilder& buffer(uint64_t bytes) {
-        mDesc.bufferBytes = bytes;
+        mDesc.buffer = BufferSize{.header = bytes};
         return rule(SizeRule::Buffer);
+    }
+    // header + bytesPerPixel * width * height (render size).
+    FieldBuilder& bufferPerPixel(uint64_t bytesPerPixel, uint64_t headerBytes = 0) {
+        mDesc.buffer = BufferSize{.header = headerBytes, .perPixel = bytesPerPixel};
+        return rule(SizeRule::Buffer);
+    }
+    // header + bytesPerBlock per block of blockSize x blockSize pixels covering the render size,
+    // with extraBlocks more blocks per axis.
+    FieldBuilder& bufferPerBlock(uint32_t blockSize, uint64_t bytesPerBlock,
+                                 uint64_t headerBytes = 0, uint32_t extraBlocks = 0) {
+        mDesc.buffer = BufferSize{.header = headerBytes,
+                                  .perBlock = bytesPerBlock,
+                                  .block = blockSize,
+                                  .extraBlocks = extraBlocks};
+        return rule(SizeRule::Buffer);
+    }
+    // Keep `frames` previous frames of this output/internal image (pass-declared history).
+    FieldBuilder& history(uint32_t frames = 1) {
+        mDesc.historyFrames = frames;
+        return *this;
     }
     FieldBuilder& optional() {
         mDesc.optional = true;
@@ -102,6 +140,11 @@ private:
     FieldBuilder add(const std::string& name, FieldKind kind, vk::Format format, SizeRule rule);
     std::vector<FieldDesc> mFields;
 };
+
+// Shader resource names of a field's previous frames: "prev_<field>" (1 frame back) and
+// "prev<N>_<field>" (N >= 2). parse returns {field, N}, or {"", 0} for any other name.
+std::string previousBindingName(const std::string& field, uint32_t framesBack);
+std::pair<std::string, uint32_t> parsePreviousBindingName(const std::string& name);
 
 const char* fieldKindName(FieldKind kind);
 const char* sizeRuleName(SizeRule rule);

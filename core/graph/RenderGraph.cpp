@@ -255,12 +255,39 @@ const gpu::Buffer& RenderGraph::bufferFor(size_t node, const std::string& field)
     return *mResources[index]->buffer;
 }
 
-bool RenderGraph::historyValidFor(size_t node, const std::string& input) const {
-    auto in = mPlan.inputs.find({node, input});
-    if (in == mPlan.inputs.end()) return false;
-    const uint64_t delay = in->second.delay;
+bool RenderGraph::historyValidFor(size_t node, const std::string& field,
+                                  uint32_t framesBack) const {
+    size_t resource = kNone;
+    uint64_t delay = framesBack;
+    if (auto own = mPlan.resourceOf.find({node, field}); own != mPlan.resourceOf.end()) {
+        // Pass-declared history: valid for the frames the ring has held since the last reset.
+        if (framesBack == 0 || framesBack > mPlan.resources[own->second].declaredHistory)
+            return false;
+        resource = own->second;
+    } else if (auto in = mPlan.inputs.find({node, field}); in != mPlan.inputs.end()) {
+        resource = in->second.resource;
+        delay = in->second.delay;
+    } else {
+        return false;
+    }
     return mFrame.framesSinceReset >= delay &&
-           mFrame.index - mResources[in->second.resource]->createdAt >= delay;
+           mFrame.index - mResources[resource]->createdAt >= delay;
+}
+
+const gpu::Image& RenderGraph::previousFor(size_t node, const std::string& field,
+                                           uint32_t framesBack) const {
+    auto own = mPlan.resourceOf.find({node, field});
+    if (own == mPlan.resourceOf.end() || mPlan.resources[own->second].declaredHistory == 0)
+        throw RuntimeError("pass '" + mPlan.nodes[node].name +
+                           "' asked for the previous frame of '" + field +
+                           "', which is not an output/internal with declared history");
+    const ResourcePlan& plan = mPlan.resources[own->second];
+    if (framesBack == 0 || framesBack > plan.declaredHistory)
+        throw RuntimeError("pass '" + mPlan.nodes[node].name + "' asked for '" + field + "' " +
+                           std::to_string(framesBack) + " frames back; it declares " +
+                           std::to_string(plan.declaredHistory));
+    const RuntimeResource& r = *mResources[own->second];
+    return *r.ring[slotOf(r, framesBack)];
 }
 
 const gpu::Image& RenderGraph::dummyImage(vk::Format format) {

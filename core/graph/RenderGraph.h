@@ -89,7 +89,8 @@ public:
     // Used by the contexts handed to passes.
     const gpu::Image& imageFor(size_t node, const std::string& field) const;
     const gpu::Buffer& bufferFor(size_t node, const std::string& field) const;
-    bool historyValidFor(size_t node, const std::string& input) const;
+    bool historyValidFor(size_t node, const std::string& field, uint32_t framesBack) const;
+    const gpu::Image& previousFor(size_t node, const std::string& field, uint32_t framesBack) const;
     const gpu::Image& dummyImage(vk::Format format);
     const gpu::Buffer& dummyBuffer();  // kDummyBufferBytes of zeros
 

@@ -63,7 +63,7 @@ uint64_t RenderGraph::cacheKey(size_t node) const {
     uint64_t h = 1469598103934665603ull;
     for (char c : saveParams(*n.pass, false).dump()) h = mix(h, uint8_t(c));
     h = mix(h, mFrame.seed);  // passes see it (ImageSource noise); size changes reset anyway
-    if (n.pass->sceneNeeds() != 0) {
+    if (n.pass->sceneNeeds() != 0 || n.pass->usesCamera()) {
         // A pass that reads the scene sees the camera too: a moved camera is a changed input.
         const auto info = scene::layout::packCamera(*mCamera, 0, 0);
         const auto* bytes = reinterpret_cast<const uint8_t*>(&info);

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/graph/Pass.h"
+#include "core/scene/SceneFeatures.h"
 
 namespace fovea::scene {
 
@@ -15,7 +15,7 @@ constexpr float kDefaultYfov = 0.7853982f;  // 45 degrees, docs/scenes.md "Defau
 
 uint32_t Scene::features() const {
     uint32_t bits = 0;
-    if (!mesh.triangles.empty()) bits |= graph::kSceneGeometry;
+    if (!mesh.triangles.empty()) bits |= kSceneGeometry;
     // Only materials some triangle uses count: an emissive or textured material nothing draws
     // gives a pass nothing to work on.
     std::vector<char> used(materials.size(), 0);
@@ -25,12 +25,12 @@ uint32_t Scene::features() const {
     for (size_t i = 0; i < materials.size(); ++i) {
         if (!used[i]) continue;
         const Material& m = materials[i];
-        if (m.isEmissive()) bits |= graph::kSceneEmissive;
+        if (m.isEmissive()) bits |= kSceneEmissive;
         if (m.baseColorTexture >= 0 || m.emissiveTexture >= 0 || m.metallicRoughnessTexture >= 0) {
-            bits |= graph::kSceneTextures;
+            bits |= kSceneTextures;
         }
     }
-    if (!lights.empty()) bits |= graph::kScenePunctual;
+    if (!lights.empty()) bits |= kScenePunctual;
     return bits;
 }
 

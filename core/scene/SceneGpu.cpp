@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "core/graph/Pass.h"
+#include "core/scene/SceneFeatures.h"
 #include "core/util/DidYouMean.h"
 #include "core/util/Error.h"
 #include "core/vk/ComputePipeline.h"
@@ -201,10 +201,10 @@ void SceneGpu::upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
     }
 
     mFeatures = 0;
-    if (!triangles.empty()) mFeatures |= graph::kSceneGeometry;
-    if (lights.emissiveTriangleCount() > 0) mFeatures |= graph::kSceneEmissive;
-    if (textured) mFeatures |= graph::kSceneTextures;
-    if (lights.punctualLightCount() > 0) mFeatures |= graph::kScenePunctual;
+    if (!triangles.empty()) mFeatures |= kSceneGeometry;
+    if (lights.emissiveTriangleCount() > 0) mFeatures |= kSceneEmissive;
+    if (textured) mFeatures |= kSceneTextures;
+    if (lights.punctualLightCount() > 0) mFeatures |= kScenePunctual;
     mInfo.features = mFeatures;
 
     mBuffers.clear();
@@ -227,9 +227,9 @@ void SceneGpu::bind(gpu::ComputePipeline& pipeline) const {
 
 std::vector<std::pair<std::string, std::string>> SceneGpu::defines() const {
     auto flag = [&](uint32_t bit) { return std::string((mFeatures & bit) ? "1" : "0"); };
-    return {{"SCENE_HAS_TEXTURES", flag(graph::kSceneTextures)},
-            {"SCENE_HAS_EMISSIVE", flag(graph::kSceneEmissive)},
-            {"SCENE_HAS_PUNCTUAL", flag(graph::kScenePunctual)}};
+    return {{"SCENE_HAS_TEXTURES", flag(kSceneTextures)},
+            {"SCENE_HAS_EMISSIVE", flag(kSceneEmissive)},
+            {"SCENE_HAS_PUNCTUAL", flag(kScenePunctual)}};
 }
 
 const gpu::Buffer& SceneGpu::buffer(std::string_view name) const {

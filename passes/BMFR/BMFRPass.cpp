@@ -1,6 +1,5 @@
 #include "passes/BMFR/BMFRPass.h"
 
-#include "core/util/Error.h"
 #include "core/vk/Barriers.h"
 #include "core/vk/ComputePipeline.h"
 #include "core/vk/Timestamps.h"
@@ -18,16 +17,6 @@ constexpr int kOffsets[BMFRPass::kOffsetCount][2] = {
 constexpr uint32_t kStatsBytes = 16;  // uint counters[4]
 constexpr uint32_t kCoefStride = 96;  // floats per block (bmfr_common.glsl)
 constexpr float kMaxCount = 255.0f;   // P2 §3.2: the count is only needed while small (8 bits)
-
-// History images, two slots each: frame f writes slot f % 2 and reads the other.
-enum History { kPosition, kNormal, kAccum, kFiltered };
-const char* slotName(History what, uint64_t slot) {
-    static const char* names[4][2] = {{"hist_position0", "hist_position1"},
-                                      {"hist_normal0", "hist_normal1"},
-                                      {"hist_accum0", "hist_accum1"},
-                                      {"hist_filtered0", "hist_filtered1"}};
-    return names[what][slot & 1u];
-}
 
 }  // namespace
 
@@ -111,48 +100,44 @@ void BMFRPass::reflect(graph::Reflection& r) const {
         .doc(
             "uint[4] since the last reset: non-finite colour samples, non-finite geometry "
             "pixels, negative colour samples, blocks with dropped columns");
-    for (const char* f : {"hist_position0", "hist_position1"})
-        r.internal(f, rgba32).persistent().doc("phase I history: positions (ping-pong)");
-    for (const char* f : {"hist_normal0", "hist_normal1"})
-        r.internal(f, vk::Format::eR16G16B16A16Sfloat)
-            .persistent()
-            .doc("phase I history: normals (ping-pong)");
+    // Private histories: the graph keeps each one's previous frame (shaders: prev_hist_*) and says
+    // when it holds none (first frame, reset, camera cut, resize).
+    r.internal("hist_position", rgba32).history().doc("phase I history: world positions");
+    r.internal("hist_normal", vk::Format::eR16G16B16A16Sfloat)
+        .history()
+        .doc("phase I history: normals");
     const auto history = mFp16History ? vk::Format::eR16G16B16A16Sfloat : rgba32;
-    for (const char* f : {"hist_accum0", "hist_accum1"})
-        r.internal(f, history).persistent().doc("phase I history: colour + count (ping-pong)");
-    for (const char* f : {"hist_filtered0", "hist_filtered1"})
-        r.internal(f, history).persistent().doc("phase III history: colour + count (ping-pong)");
+    r.internal("hist_accum", history).history().doc("phase I history: colour + count");
+    r.internal("hist_filtered", history).history().doc("phase III history: colour + count");
+    r.internal("coefficients", vk::Format::eUndefined)
+        .bufferPerBlock(32, kCoefStride * sizeof(float), 0, 1)
+        .doc(
+            "phase II: per-block fit (bmfr_common.glsl layout); one block more per axis than "
+            "the image needs, so every block offset is covered");
     r.internal("reprojection", rgba32)
         .doc("phase I -> III: xy previous pixel, z accepted-tap mask (4 bits)");
 }
 
+void BMFRPass::validate(const graph::ValidateContext& ctx) const {
+    if (mFeatures == "albedo" && !ctx.connected("albedo"))
+        ctx.fail("features", "'albedo' needs the input 'albedo' connected");
+}
+
 void BMFRPass::compile(graph::CompileContext& ctx) {
     const bool albedoFeature = mFeatures == "albedo";
-    if (albedoFeature && !ctx.connected("albedo"))
-        throw RuntimeError("pass '" + name() +
-                           "' (BMFR): params.features = albedo needs the input 'albedo' "
-                           "connected");
     mUseMotion = ctx.connected("motion");
     mUseAlbedo = ctx.connected("albedo");
     mUseEmission = ctx.connected("emission");
     const std::vector<std::pair<std::string, std::string>> defines = {
         {"BMFR_ALBEDO", albedoFeature ? "1" : "0"},
         {"BMFR_FP16_HISTORY", mFp16History ? "1" : "0"}};
-    mAccumulate = ctx.createPipeline(
-        "bmfr/accumulate.comp", defines,
-        {"prev_position", "prev_normal", "prev_accum", "cur_position", "cur_normal", "cur_accum"});
-    mFit = ctx.createPipeline("bmfr/fit.comp", defines, {"bmfr_coefficients"});
-    mWeightedSum = ctx.createPipeline("bmfr/weighted_sum.comp", defines, {"bmfr_coefficients"});
-    mSecond = ctx.createPipeline("bmfr/accumulate_filtered.comp", defines,
-                                 {"prev_filtered", "cur_filtered"});
+    mAccumulate = ctx.createPipeline("bmfr/accumulate.comp", defines);
+    mFit = ctx.createPipeline("bmfr/fit.comp", defines);
+    mWeightedSum = ctx.createPipeline("bmfr/weighted_sum.comp", defines);
+    mSecond = ctx.createPipeline("bmfr/accumulate_filtered.comp", defines);
     const auto& size = ctx.renderSize();
     mBlocksX = blocksAcross(size.width);
     mBlocksY = blocksAcross(size.height);
-    mCoefficients = std::make_unique<gpu::Buffer>(
-        ctx.gpu(), uint64_t(mBlocksX) * mBlocksY * kCoefStride * sizeof(float),
-        vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferSrc |
-            vk::BufferUsageFlagBits::eTransferDst,
-        false, name() + ".coefficients");
     mTimestamps.reset();
     mTimingsPending = false;
     if (mTimings) mTimestamps = std::make_unique<gpu::TimestampPool>(ctx.gpu(), 5);
@@ -169,9 +154,8 @@ void BMFRPass::readTimings() {
 void BMFRPass::execute(graph::ExecuteContext& ctx) {
     const auto& cmd = ctx.cmd();
     readTimings();
-    if (ctx.frame().framesSinceReset == 0) mFrames = 0;
-    const bool history = mFrames > 0;
-    const uint64_t cur = mFrames & 1u, prev = cur ^ 1u;
+    // Every history is written each frame, so one answers for all four.
+    const bool history = ctx.historyValid("hist_accum");
     const auto& out = ctx.image("filtered");
     const glm::ivec2 size(int(out.width()), int(out.height()));
 
@@ -193,12 +177,6 @@ void BMFRPass::execute(graph::ExecuteContext& ctx) {
 
     // (I) accumulation.
     ctx.bindFields(*mAccumulate);
-    mAccumulate->bind("prev_position", ctx.image(slotName(kPosition, prev)))
-        .bind("prev_normal", ctx.image(slotName(kNormal, prev)))
-        .bind("prev_accum", ctx.image(slotName(kAccum, prev)))
-        .bind("cur_position", ctx.image(slotName(kPosition, cur)))
-        .bind("cur_normal", ctx.image(slotName(kNormal, cur)))
-        .bind("cur_accum", ctx.image(slotName(kAccum, cur)));
     mAccumulate->set("size", size)
         .set("history", int(history))
         .set("useMotion", int(mUseMotion))
@@ -216,7 +194,6 @@ void BMFRPass::execute(graph::ExecuteContext& ctx) {
     const uint32_t frameSeed = uint32_t(seed) ^ (uint32_t(seed >> 32) * 0x9e3779b9u) ^
                                (uint32_t(ctx.frame().index) * 0x85ebca6bu);
     ctx.bindFields(*mFit);
-    mFit->bind("bmfr_coefficients", *mCoefficients);
     mFit->set("size", size)
         .set("offset", glm::ivec2(offset[0], offset[1]))
         .set("blocksX", mBlocksX)
@@ -229,7 +206,6 @@ void BMFRPass::execute(graph::ExecuteContext& ctx) {
 
     // (II) weighted sum with the noise-free features.
     ctx.bindFields(*mWeightedSum);
-    mWeightedSum->bind("bmfr_coefficients", *mCoefficients);
     mWeightedSum->set("size", size)
         .set("offset", glm::ivec2(offset[0], offset[1]))
         .set("blocksX", mBlocksX);
@@ -239,8 +215,6 @@ void BMFRPass::execute(graph::ExecuteContext& ctx) {
 
     // (III) second accumulation + remodulation.
     ctx.bindFields(*mSecond);
-    mSecond->bind("prev_filtered", ctx.image(slotName(kFiltered, prev)))
-        .bind("cur_filtered", ctx.image(slotName(kFiltered, cur)));
     mSecond->set("size", size)
         .set("useAlbedo", int(mUseAlbedo))
         .set("useEmission", int(mUseEmission))
@@ -249,7 +223,6 @@ void BMFRPass::execute(graph::ExecuteContext& ctx) {
     mSecond->dispatch(cmd, out.width(), out.height());
     stamp(4);
     mTimingsPending = mTimestamps != nullptr;
-    ++mFrames;
 }
 
 nlohmann::json BMFRPass::statistics(const graph::StatisticsContext& ctx) const {

@@ -26,8 +26,8 @@ public:
     void params(graph::ParamVisitor& v) override;
     void reflect(graph::Reflection& r) const override;
     void compile(graph::CompileContext& ctx) override;
+    void validate(const graph::ValidateContext& ctx) const override;
     void execute(graph::ExecuteContext& ctx) override;
-    void onReset() override { mFrames = 0; }
     std::string variant() const override { return mFeatures; }
     nlohmann::json statistics(const graph::StatisticsContext& ctx) const override;
 
@@ -59,11 +59,9 @@ private:
     bool mFp16History = false;
 
     // State.
-    uint64_t mFrames = 0;  // executions since the last reset (also picks the history slot)
     int mBlocksX = 0, mBlocksY = 0;
     bool mUseMotion = false, mUseAlbedo = false, mUseEmission = false;
     std::unique_ptr<gpu::ComputePipeline> mAccumulate, mFit, mWeightedSum, mSecond;
-    std::unique_ptr<gpu::Buffer> mCoefficients;
     std::unique_ptr<gpu::TimestampPool> mTimestamps;
     bool mTimingsPending = false;
     std::array<double, 4> mKernelMs{-1.0, -1.0, -1.0, -1.0};

@@ -11,7 +11,6 @@ namespace fovea::passes {
 
 namespace {
 const std::vector<std::string> kUnits = {"pixels", "degrees"};
-constexpr int kDefaultCapacity = 2048 * 2048;
 }  // namespace
 
 void FoveationMaskPass::params(graph::ParamVisitor& v) {
@@ -37,15 +36,12 @@ void FoveationMaskPass::params(graph::ParamVisitor& v) {
     v.add("animate", mAnimate, false,
           "a new random toss every frame (frame index in the seed); seed 000 §3.2 keeps the "
           "distribution fixed for all frames");
-    v.add("capacity", mCapacity, kDefaultCapacity,
-          "entries the layout buffer holds (16 + 8 * capacity bytes); must cover width * height",
-          {1, 1 << 27});
 }
 
 void FoveationMaskPass::reflect(graph::Reflection& r) const {
-    // Reflection has no buffer size rule that follows the screen, hence `capacity` (as SampleList).
-    r.output(scene::kSampleLayoutField, vk::Format::eUndefined)
-        .buffer(scene::sampleLayoutBytes(uint64_t(std::max(mCapacity, 1))))
+    // Room for every pixel of the render size: a layout never lists a pixel twice.
+    r.output(sampling::kSampleLayoutField, vk::Format::eUndefined)
+        .bufferPerPixel(sampling::kSampleLayoutEntryBytes, sampling::kSampleLayoutHeaderBytes)
         .doc(
             "sample layout: the sampled pixels of both eyes, row-major, each with its layer's spp");
     r.output("mask", vk::Format::eR32Uint)
@@ -54,44 +50,27 @@ void FoveationMaskPass::reflect(graph::Reflection& r) const {
             "bits 16-31: samples (0 when not sampled)");
 }
 
-void FoveationMaskPass::check() const {
-    auto fail = [&](const std::string& what) {
-        throw RuntimeError("pass '" + name() + "' (FoveationMask): " + what);
-    };
-    if (!std::isfinite(mR0) || !std::isfinite(mR1) || mR0 < 0.0f)
-        fail("params.r0 / params.r1 must be finite and >= 0");
+void FoveationMaskPass::validate(const graph::ValidateContext& ctx) const {
+    if (!std::isfinite(mR0) || !std::isfinite(mR1)) ctx.fail("r0", "r0 and r1 must be finite");
     if (mR1 < mR0)
-        fail("params.r1 = " + std::to_string(mR1) +
-             " is smaller than params.r0 = " + std::to_string(mR0));
+        ctx.fail("r1", std::to_string(mR1) + " is smaller than r0 = " + std::to_string(mR0));
     if (mRadiusUnit == "degrees" && mR1 > 180.0f)
-        fail("params.r1 = " + std::to_string(mR1) + " degrees exceeds 180 (radiusUnit degrees)");
+        ctx.fail("r1", std::to_string(mR1) + " degrees exceeds 180 (radiusUnit degrees)");
+    sampling::checkSampleLayoutSize(ctx.width(), ctx.height());
 }
 
 void FoveationMaskPass::compile(graph::CompileContext& ctx) {
-    check();
-    const auto& size = ctx.renderSize();
-    uint64_t pixels = uint64_t(size.width) * size.height;
-    if (uint64_t(mCapacity) < pixels)
-        throw RuntimeError("pass '" + name() + "' (FoveationMask): params.capacity = " +
-                           std::to_string(mCapacity) + " entries cannot list the " +
-                           std::to_string(size.width) + "x" + std::to_string(size.height) + " = " +
-                           std::to_string(pixels) + " pixels; raise it");
-    if (size.width > scene::kSampleLayoutMaxCoordinate + 1 ||
-        size.height > scene::kSampleLayoutMaxCoordinate + 1)
-        throw RuntimeError("pass '" + name() +
-                           "' (FoveationMask): layouts store 16-bit coordinates; the image is " +
-                           std::to_string(size.width) + "x" + std::to_string(size.height));
-    mPipeline =
-        ctx.createPipeline("foveation_mask/foveation_mask.comp", {}, {scene::kSampleLayoutBinding});
+    mPipeline = ctx.createPipeline("foveation_mask/foveation_mask.comp", {},
+                                   {sampling::kSampleLayoutBinding});
 }
 
 void FoveationMaskPass::execute(graph::ExecuteContext& ctx) {
     const auto& frame = ctx.frame();
     // Same seed rule as SampleList: run seed + pass seed, the frame index only when animated.
-    uint32_t seed = scene::sampleListSeed(
+    uint32_t seed = sampling::sampleListSeed(
         frame.seed + uint64_t(uint32_t(mSeed)) * 0x9E3779B97F4A7C15ull, frame.index, mAnimate);
     ctx.bindFields(*mPipeline);
-    mPipeline->bind(scene::kSampleLayoutBinding, ctx.buffer(scene::kSampleLayoutField));
+    mPipeline->bind(sampling::kSampleLayoutBinding, ctx.buffer(sampling::kSampleLayoutField));
     mPipeline->set("size", glm::uvec2(std::max(frame.width, 1u), std::max(frame.height, 1u)))
         .set("radii", glm::vec2(mR0, mR1))
         .set("unitDegrees", uint32_t(mRadiusUnit == "degrees"))

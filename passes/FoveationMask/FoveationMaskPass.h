@@ -6,7 +6,7 @@
 // mask B of Eq. 2 (with the layer id, for the non-homogeneous denoiser, §3.4).
 #pragma once
 #include "core/graph/Pass.h"
-#include "core/scene/SampleLayout.h"
+#include "core/sampling/SampleLayout.h"
 
 namespace fovea::passes {
 
@@ -14,11 +14,10 @@ class FoveationMaskPass : public graph::Pass {
 public:
     void params(graph::ParamVisitor& v) override;
     void reflect(graph::Reflection& r) const override;
-    // Reads only the camera (gaze, size, FOV), never the geometry. The graph mixes the camera
-    // into a cacheable pass's cache key only for passes with sceneNeeds() != 0
-    // (RenderGraph::cacheKey), so the geometry need is declared to keep the cached mask in step
-    // with the gaze. Cost: culled without a scene (no consumer of a layout runs without one).
-    uint32_t sceneNeeds() const override { return graph::kSceneGeometry; }
+    // Reads only the camera (gaze, size, FOV), never the geometry: the camera enters the cache
+    // key, and the pass runs without a scene too.
+    bool usesCamera() const override { return true; }
+    void validate(const graph::ValidateContext& ctx) const override;
     void compile(graph::CompileContext& ctx) override;
     void execute(graph::ExecuteContext& ctx) override;
     // Seed 000 §3.2: the distribution "is constant for all frames"; only `animate` (a new random
@@ -27,15 +26,12 @@ public:
     std::string variant() const override { return mRadiusUnit; }
 
 private:
-    void check() const;
-
     float mR0 = 144.0f, mR1 = 288.0f;
     std::string mRadiusUnit;
     float mOuterProbability = 0.5f;
     int mSppFovea = 4, mSppMiddle = 3, mSppOuter = 2;
     int mSeed = 0;
     bool mAnimate = false;
-    int mCapacity = 0;
     std::unique_ptr<gpu::ComputePipeline> mPipeline;
 };
 

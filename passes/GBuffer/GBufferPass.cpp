@@ -15,8 +15,8 @@ void GBufferPass::params(graph::ParamVisitor& v) {
 }
 
 void GBufferPass::reflect(graph::Reflection& r) const {
-    r.input(scene::kSampleLayoutField)
-        .buffer(scene::kSampleLayoutHeaderBytes)
+    r.input(sampling::kSampleLayoutField)
+        .buffer(sampling::kSampleLayoutHeaderBytes)
         .optional()
         .doc(
             "sample layout (docs/sample-layouts.md): only listed pixels are traced, the rest "
@@ -57,15 +57,16 @@ void GBufferPass::compile(graph::CompileContext& ctx) {
         if (!mVariant.empty()) mVariant += ",";
         mVariant += (value == "0" ? "no-" : "") + feature;
     }
-    mPipeline = ctx.createPipeline("gbuffer/gbuffer.comp", defines, {scene::kSampleLayoutBinding});
-    mLayoutInput = std::make_unique<scene::SampleLayoutInput>(ctx.gpu());
+    mPipeline =
+        ctx.createPipeline("gbuffer/gbuffer.comp", defines, {sampling::kSampleLayoutBinding});
+    mLayoutInput = std::make_unique<sampling::SampleLayoutInput>(ctx.gpu());
 }
 
 void GBufferPass::execute(graph::ExecuteContext& ctx) {
     const auto& out = ctx.image("visibility");
-    const bool useLayout = ctx.connected(scene::kSampleLayoutField);
+    const bool useLayout = ctx.connected(sampling::kSampleLayoutField);
     ctx.bindFields(*mPipeline);
-    mLayoutInput->bind(*mPipeline, useLayout ? &ctx.buffer(scene::kSampleLayoutField) : nullptr);
+    mLayoutInput->bind(*mPipeline, useLayout ? &ctx.buffer(sampling::kSampleLayoutField) : nullptr);
     mPipeline->set("size", glm::uvec2(out.width(), out.height()))
         .set("useLayout", uint32_t(useLayout))
         .set("useJitter", uint32_t(mJitter));

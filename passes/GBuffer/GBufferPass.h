@@ -4,7 +4,7 @@
 // channels; encodings in docs/passes/GBuffer.md.
 #pragma once
 #include "core/graph/Pass.h"
-#include "core/scene/SampleLayout.h"
+#include "core/sampling/SampleLayout.h"
 
 namespace fovea::passes {
 
@@ -26,7 +26,7 @@ private:
     bool mJitter = true;
     std::string mVariant;
     std::unique_ptr<gpu::ComputePipeline> mPipeline;
-    std::unique_ptr<scene::SampleLayoutInput> mLayoutInput;
+    std::unique_ptr<sampling::SampleLayoutInput> mLayoutInput;
 };
 
 }  // namespace fovea::passes

@@ -1,6 +1,6 @@
 #include "passes/PathTrace/PathTracePass.h"
 
-#include "core/scene/SampleLayout.h"
+#include "core/sampling/SampleLayout.h"
 #include "core/scene/SceneGpu.h"
 #include "core/util/Error.h"
 #include "core/vk/Barriers.h"
@@ -54,8 +54,8 @@ void PathTracePass::reflect(graph::Reflection& r) const {
             "jittered primary rays per sample");
     r.input("albedo").optional().doc(
         "first-hit base colour for demodulation; open = the pass's own first hit");
-    r.input(scene::kSampleLayoutField)
-        .buffer(scene::kSampleLayoutHeaderBytes)
+    r.input(sampling::kSampleLayoutField)
+        .buffer(sampling::kSampleLayoutHeaderBytes)
         .optional()
         .doc("sample layout (CONTRACT): only listed pixels are traced, with their count");
     r.output("radiance", vk::Format::eR32G32B32A32Sfloat)
@@ -82,7 +82,7 @@ void PathTracePass::compile(graph::CompileContext& ctx) {
     defines.emplace_back("PATHTRACE_COUNT_RAYS", mCountRays ? "1" : "0");
     mUseVisibility = ctx.connected("visibility");
     mUseAlbedo = ctx.connected("albedo");
-    mUseLayout = ctx.connected(scene::kSampleLayoutField);
+    mUseLayout = ctx.connected(sampling::kSampleLayoutField);
     mVariant = std::string(ggx ? "ggx" : "lambert") + "," +
                feature(defines, "SCENE_HAS_EMISSIVE", "emissive") + "," +
                feature(defines, "SCENE_HAS_PUNCTUAL", "punctual") + "," +
@@ -92,7 +92,7 @@ void PathTracePass::compile(graph::CompileContext& ctx) {
                (mUseLayout ? ",layout" : ",spp=" + std::to_string(mSpp)) +
                (mCountRays ? ",count-rays" : "");
     mTrace = ctx.createPipeline("pathtrace/pathtrace.comp", defines,
-                                {scene::kSampleLayoutBinding, "pathtrace_rays"});
+                                {sampling::kSampleLayoutBinding, "pathtrace_rays"});
     mRayCounter.reset();
     mCounterCleared = false;
     if (mCountRays)
@@ -102,7 +102,7 @@ void PathTracePass::compile(graph::CompileContext& ctx) {
                                                         vk::BufferUsageFlagBits::eTransferDst,
                                                     false, name() + ".rays");
     mClear = ctx.createPipeline("pathtrace/clear.comp");
-    mLayoutInput = std::make_unique<scene::SampleLayoutInput>(ctx.gpu());
+    mLayoutInput = std::make_unique<sampling::SampleLayoutInput>(ctx.gpu());
 }
 
 void PathTracePass::execute(graph::ExecuteContext& ctx) {
@@ -128,7 +128,7 @@ void PathTracePass::execute(graph::ExecuteContext& ctx) {
     }
     if (mRayCounter) mTrace->bind("pathtrace_rays", *mRayCounter);
     ctx.bindFields(*mTrace);
-    mLayoutInput->bind(*mTrace, mUseLayout ? &ctx.buffer(scene::kSampleLayoutField) : nullptr);
+    mLayoutInput->bind(*mTrace, mUseLayout ? &ctx.buffer(sampling::kSampleLayoutField) : nullptr);
     uint64_t seed = ctx.frame().seed;
     mTrace->set("size", size)
         .set("seedLo", uint32_t(seed & 0xFFFFFFFFu))

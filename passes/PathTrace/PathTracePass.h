@@ -12,7 +12,7 @@
 
 #include "core/graph/Pass.h"
 
-namespace fovea::scene {
+namespace fovea::sampling {
 class SampleLayoutInput;
 }
 
@@ -48,7 +48,7 @@ private:
     bool mUseVisibility = false, mUseAlbedo = false, mUseLayout = false;
     std::unique_ptr<gpu::ComputePipeline> mTrace;
     std::unique_ptr<gpu::ComputePipeline> mClear;
-    std::unique_ptr<scene::SampleLayoutInput> mLayoutInput;
+    std::unique_ptr<sampling::SampleLayoutInput> mLayoutInput;
     std::unique_ptr<gpu::Buffer> mRayCounter;  // countRays: 4 x uint32, summed on the GPU
     bool mCounterCleared = false;              // zeroed by the first execute after compile
 };

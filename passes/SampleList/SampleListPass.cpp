@@ -10,7 +10,6 @@ namespace fovea::passes {
 
 namespace {
 const std::vector<std::string> kPatterns = {"all", "checkerboard", "every_nth", "random"};
-constexpr int kDefaultCapacity = 2048 * 2048;
 }  // namespace
 
 void SampleListPass::params(graph::ParamVisitor& v) {
@@ -23,56 +22,45 @@ void SampleListPass::params(graph::ParamVisitor& v) {
     v.add("seed", mSeed, 0, "random: seed, mixed with the run's --seed", {0, 2147483647});
     v.add("animate", mAnimate, false, "random: a new selection every frame (frame index in seed)");
     v.add("spp", mSpp, 1, "samples per listed pixel", {1, 65535});
-    v.add("capacity", mCapacity, kDefaultCapacity,
-          "entries the output buffer holds (16 + 8 * capacity bytes); must cover width * height",
-          {1, 1 << 27});
 }
 
 void SampleListPass::reflect(graph::Reflection& r) const {
-    // Reflection has no buffer size rule that follows the screen, hence the capacity parameter.
-    r.output(scene::kSampleLayoutField, vk::Format::eUndefined)
-        .buffer(scene::sampleLayoutBytes(uint64_t(std::max(mCapacity, 1))))
+    // Room for every pixel of the render size (pattern "all").
+    r.output(sampling::kSampleLayoutField, vk::Format::eUndefined)
+        .bufferPerPixel(sampling::kSampleLayoutEntryBytes, sampling::kSampleLayoutHeaderBytes)
         .doc("sample layout: 16-byte header + one uvec2 (x | y << 16, spp) per listed pixel");
 }
 
-void SampleListPass::compile(graph::CompileContext& ctx) {
-    const auto& size = ctx.renderSize();
-    uint64_t pixels = uint64_t(size.width) * size.height;
-    if (uint64_t(mCapacity) < pixels)
-        throw RuntimeError(
-            "pass '" + name() + "' (SampleList): params.capacity = " + std::to_string(mCapacity) +
-            " entries cannot list the " + std::to_string(size.width) + "x" +
-            std::to_string(size.height) + " = " + std::to_string(pixels) + " pixels; raise it");
-    if (size.width > scene::kSampleLayoutMaxCoordinate + 1 ||
-        size.height > scene::kSampleLayoutMaxCoordinate + 1)
-        throw RuntimeError("pass '" + name() +
-                           "' (SampleList): layouts store 16-bit coordinates; the image is " +
-                           std::to_string(size.width) + "x" + std::to_string(size.height));
-    mPipeline =
-        ctx.createPipeline("sample_list/sample_list.comp", {}, {scene::kSampleLayoutBinding});
+void SampleListPass::validate(const graph::ValidateContext& ctx) const {
+    sampling::checkSampleLayoutSize(ctx.width(), ctx.height());
 }
 
-scene::SamplePatternOptions SampleListPass::options(const graph::FrameInfo& frame) const {
-    scene::SamplePatternOptions o;
+void SampleListPass::compile(graph::CompileContext& ctx) {
+    mPipeline =
+        ctx.createPipeline("sample_list/sample_list.comp", {}, {sampling::kSampleLayoutBinding});
+}
+
+sampling::SamplePatternOptions SampleListPass::options(const graph::FrameInfo& frame) const {
+    sampling::SamplePatternOptions o;
     auto it = std::find(kPatterns.begin(), kPatterns.end(), mPattern);
-    o.pattern = scene::SamplePattern(it == kPatterns.end() ? 0 : it - kPatterns.begin());
+    o.pattern = sampling::SamplePattern(it == kPatterns.end() ? 0 : it - kPatterns.begin());
     o.n = uint32_t(std::max(mN, 1));
     o.fraction = mFraction;
-    o.seed = scene::sampleListSeed(frame.seed + uint64_t(uint32_t(mSeed)) * 0x9E3779B97F4A7C15ull,
-                                   frame.index, mAnimate);
+    o.seed = sampling::sampleListSeed(
+        frame.seed + uint64_t(uint32_t(mSeed)) * 0x9E3779B97F4A7C15ull, frame.index, mAnimate);
     o.samples = uint32_t(std::max(mSpp, 1));
     return o;
 }
 
 void SampleListPass::execute(graph::ExecuteContext& ctx) {
     const auto& frame = ctx.frame();
-    scene::SamplePatternOptions o = options(frame);
+    sampling::SamplePatternOptions o = options(frame);
     ctx.bindFields(*mPipeline);
-    mPipeline->bind(scene::kSampleLayoutBinding, ctx.buffer(scene::kSampleLayoutField));
+    mPipeline->bind(sampling::kSampleLayoutBinding, ctx.buffer(sampling::kSampleLayoutField));
     mPipeline->set("size", glm::uvec2(std::max(frame.width, 1u), std::max(frame.height, 1u)))
         .set("pattern", uint32_t(o.pattern))
         .set("n", o.n)
-        .set("threshold", scene::sampleFractionThreshold(o.fraction))
+        .set("threshold", sampling::sampleFractionThreshold(o.fraction))
         .set("seed", o.seed)
         .set("samples", o.samples);
     mPipeline->dispatch(ctx.cmd(), 256);  // one workgroup (see the shader)

@@ -4,7 +4,7 @@
 // demos; deterministic for a given seed (and frame, when animated).
 #pragma once
 #include "core/graph/Pass.h"
-#include "core/scene/SampleLayout.h"
+#include "core/sampling/SampleLayout.h"
 
 namespace fovea::passes {
 
@@ -12,6 +12,7 @@ class SampleListPass : public graph::Pass {
 public:
     void params(graph::ParamVisitor& v) override;
     void reflect(graph::Reflection& r) const override;
+    void validate(const graph::ValidateContext& ctx) const override;
     void compile(graph::CompileContext& ctx) override;
     void execute(graph::ExecuteContext& ctx) override;
     // Everything it writes follows from the parameters, the graph seed (in the cache key) and the
@@ -19,7 +20,7 @@ public:
     bool cacheable() const override { return !(mPattern == "random" && mAnimate); }
 
     // The options the shader runs with (also what tests rebuild on the CPU).
-    scene::SamplePatternOptions options(const graph::FrameInfo& frame) const;
+    sampling::SamplePatternOptions options(const graph::FrameInfo& frame) const;
 
 private:
     std::string mPattern;
@@ -28,7 +29,6 @@ private:
     int mSeed = 0;
     bool mAnimate = false;
     int mSpp = 1;
-    int mCapacity = 0;
     std::unique_ptr<gpu::ComputePipeline> mPipeline;
 };
 

@@ -32,11 +32,12 @@ void TAAPass::reflect(graph::Reflection& r) const {
         "passed through");
     r.input("motion").optional().floatOnly().sameAs("color").doc(
         "GBuffer motion: previous pixel - current pixel, jitter-free; open = still camera");
-    r.input("history").floatOnly().sameAs("color").doc(
-        "this pass's own `result` through a delay-1 edge (the previous frame's output)");
     r.output("result", vk::Format::eR32G32B32A32Sfloat)
         .sameAs("color")
-        .doc("antialiased colour (finite everywhere); feed it back into `history` with delay 1");
+        .history(1)
+        .doc(
+            "antialiased colour (finite everywhere); the graph keeps the previous frame's result "
+            "as this pass's history (no edge to wire)");
 }
 
 void TAAPass::compile(graph::CompileContext& ctx) {
@@ -52,9 +53,8 @@ void TAAPass::execute(graph::ExecuteContext& ctx) {
     if (eyes > width) eyes = 1;  // a 1-pixel-wide image cannot be split
     const int eyeWidth = std::max(width / eyes, 1);
     // historyValid is false on the first frame and after a reset, resize or camera cut (the graph
-    // invalidates every delayed edge then); the cut flag is checked too so a cut always restarts.
-    const bool useHistory =
-        ctx.historyValid("history") && !ctx.frame().cameraCut && ctx.frame().framesSinceReset > 0;
+    // invalidates every history then).
+    const bool useHistory = ctx.historyValid("result");
     const int clipMode = mClip == "none" ? 0 : (mClip == "minmax" ? 1 : 2);
     ctx.bindFields(*mPipeline);
     mPipeline->set("size", glm::ivec2(width, height))

@@ -17,12 +17,12 @@ uniform sampler2D position;  // world position, w = 1 hit
 uniform sampler2D normal;    // shading normal
 uniform sampler2D motion;    // previous pixel - current pixel (optional)
 // History ping-pong (bound by the pass): previous frame's slot is read, this frame's written.
-layout(rgba32f) uniform readonly image2D prev_position;
-layout(rgba16f) uniform readonly image2D prev_normal;
-layout(BMFR_HIST_FORMAT) uniform readonly image2D prev_accum;
-layout(rgba32f) uniform writeonly image2D cur_position;
-layout(rgba16f) uniform writeonly image2D cur_normal;
-layout(BMFR_HIST_FORMAT) uniform writeonly image2D cur_accum;
+layout(rgba32f) uniform readonly image2D prev_hist_position;
+layout(rgba16f) uniform readonly image2D prev_hist_normal;
+layout(BMFR_HIST_FORMAT) uniform readonly image2D prev_hist_accum;
+layout(rgba32f) uniform writeonly image2D hist_position;
+layout(rgba16f) uniform writeonly image2D hist_normal;
+layout(BMFR_HIST_FORMAT) uniform writeonly image2D hist_accum;
 layout(rgba32f) uniform writeonly image2D accumulated;   // rgb mean, a = sample count
 layout(rgba32f) uniform writeonly image2D reprojection;  // xy previous pixel, z tap mask, w 1
 layout(std430) buffer Stats { uint counters[4]; } stats;
@@ -93,14 +93,14 @@ void main() {
             ivec2 o = ivec2(i & 1, i >> 1);
             ivec2 t = base + o;
             if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, pc.size))) continue;
-            vec4 pw = imageLoad(prev_position, t);
-            vec3 pn = imageLoad(prev_normal, t).xyz;
+            vec4 pw = imageLoad(prev_hist_position, t);
+            vec3 pn = imageLoad(prev_hist_normal, t).xyz;
             if (!(pw.w > 0.0)) continue;  // no surface there last frame
             vec3 d = pw.xyz - w.xyz;
             if (!(dot(d, d) <= limit2)) continue;
             if (!(dot(pn, n) >= pc.normalThreshold)) continue;
             float bw = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
-            vec4 h = imageLoad(prev_accum, t);
+            vec4 h = imageLoad(prev_hist_accum, t);
             hist += bw * h.rgb;
             count += bw * h.a;
             wsum += bw;
@@ -130,8 +130,8 @@ void main() {
     acc = min(acc, vec3(BMFR_HIST_MAX));  // the output equals what the history keeps
 
     imageStore(accumulated, p, vec4(acc, count));
-    imageStore(cur_accum, p, vec4(acc, count));
-    imageStore(cur_position, p, hit ? w : vec4(0.0));
-    imageStore(cur_normal, p, vec4(hit ? n : vec3(0.0), 0.0));
+    imageStore(hist_accum, p, vec4(acc, count));
+    imageStore(hist_position, p, hit ? w : vec4(0.0));
+    imageStore(hist_normal, p, vec4(hit ? n : vec3(0.0), 0.0));
     imageStore(reprojection, p, vec4(prev, float(mask), 1.0));
 }

@@ -12,8 +12,8 @@ uniform sampler2D fitted;
 uniform sampler2D reprojection;
 uniform sampler2D albedo;
 uniform sampler2D emission;
-layout(BMFR_HIST_FORMAT) uniform readonly image2D prev_filtered;
-layout(BMFR_HIST_FORMAT) uniform writeonly image2D cur_filtered;
+layout(BMFR_HIST_FORMAT) uniform readonly image2D prev_hist_filtered;
+layout(BMFR_HIST_FORMAT) uniform writeonly image2D hist_filtered;
 layout(rgba32f) uniform writeonly image2D filtered;
 
 layout(push_constant) uniform Params {
@@ -42,7 +42,7 @@ void main() {
             if ((mask & (1u << i)) == 0u) continue;
             ivec2 o = ivec2(i & 1, i >> 1);
             float bw = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
-            vec4 h = imageLoad(prev_filtered, base + o);  // in bounds: phase I checked it
+            vec4 h = imageLoad(prev_hist_filtered, base + o);  // in bounds: phase I checked it
             hist += bw * h.rgb;
             count += bw * h.a;
             wsum += bw;
@@ -60,7 +60,7 @@ void main() {
     count = min(count + 1.0, pc.maxCount);
     if (!bmfrFinite3(y)) { y = vec3(0.0); count = 0.0; }
     y = min(y, vec3(BMFR_HIST_MAX));
-    imageStore(cur_filtered, p, vec4(y, count));
+    imageStore(hist_filtered, p, vec4(y, count));
 
     vec3 alb = vec3(1.0), emi = vec3(0.0);
     if (pc.useAlbedo != 0) {

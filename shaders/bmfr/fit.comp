@@ -23,7 +23,7 @@ uniform sampler2D normal;
 #if BMFR_ALBEDO
 uniform sampler2D albedo;  // a feature only with features = albedo
 #endif
-layout(std430) buffer Coefficients { float v[]; } bmfr_coefficients;
+layout(std430) buffer Coefficients { float v[]; } coefficients;
 layout(std430) buffer Stats { uint counters[4]; } stats;
 
 layout(push_constant) uniform Params {
@@ -266,16 +266,16 @@ void main() {
             finite = finite && bmfrFinite3(vec3(alpha[k][0], alpha[k][1], alpha[k][2]));
         for (int k = 0; k < BMFR_M; ++k)
             for (int c = 0; c < 3; ++c)
-                bmfr_coefficients.v[base + k * 3 + c] = finite ? alpha[k][c] * zScale[c] : 0.0;
+                coefficients.v[base + k * 3 + c] = finite ? alpha[k][c] * zScale[c] : 0.0;
         for (int c = 0; c < 3; ++c) {
-            bmfr_coefficients.v[base + BMFR_COEF_CENTER + c] = center[c];
-            bmfr_coefficients.v[base + BMFR_COEF_INVHALF + c] = invHalf[c];
-            bmfr_coefficients.v[base + BMFR_COEF_ZMAX + c] = empty ? 0.0 : zMax[c];
+            coefficients.v[base + BMFR_COEF_CENTER + c] = center[c];
+            coefficients.v[base + BMFR_COEF_INVHALF + c] = invHalf[c];
+            coefficients.v[base + BMFR_COEF_ZMAX + c] = empty ? 0.0 : zMax[c];
         }
-        bmfr_coefficients.v[base + BMFR_COEF_DROPPED] = float(finite ? dropped : -1);
+        coefficients.v[base + BMFR_COEF_DROPPED] = float(finite ? dropped : -1);
         for (int m = 0; m < BMFR_M; ++m) {
-            bmfr_coefficients.v[base + BMFR_COEF_FMID + m] = fMid[m];
-            bmfr_coefficients.v[base + BMFR_COEF_FINV + m] = fInv[m];
+            coefficients.v[base + BMFR_COEF_FMID + m] = fMid[m];
+            coefficients.v[base + BMFR_COEF_FINV + m] = fInv[m];
         }
         // Empty blocks (outside the image) drop every column by construction: not counted.
         if (!empty && (dropped > 0 || !finite))

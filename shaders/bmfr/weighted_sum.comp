@@ -14,7 +14,7 @@ uniform sampler2D normal;
 #if BMFR_ALBEDO
 uniform sampler2D albedo;  // a feature only with features = albedo
 #endif
-layout(std430) buffer Coefficients { float v[]; } bmfr_coefficients;
+layout(std430) buffer Coefficients { float v[]; } coefficients;
 layout(rgba32f) uniform writeonly image2D fitted;
 
 layout(push_constant) uniform Params {
@@ -43,20 +43,20 @@ void main() {
         int base = block * BMFR_COEF_STRIDE;
         vec3 center, invHalf, zMax;
         for (int c = 0; c < 3; ++c) {
-            center[c] = bmfr_coefficients.v[base + BMFR_COEF_CENTER + c];
-            invHalf[c] = bmfr_coefficients.v[base + BMFR_COEF_INVHALF + c];
-            zMax[c] = bmfr_coefficients.v[base + BMFR_COEF_ZMAX + c];
+            center[c] = coefficients.v[base + BMFR_COEF_CENTER + c];
+            invHalf[c] = coefficients.v[base + BMFR_COEF_INVHALF + c];
+            zMax[c] = coefficients.v[base + BMFR_COEF_ZMAX + c];
         }
         float f[BMFR_M];
         bmfrFeatures(w.xyz, clamp(n, -1.0, 1.0), a, center, invHalf, f);
         vec3 s = vec3(0.0);
         for (int m = 0; m < BMFR_M; ++m) {
             float g = m == 0 ? 1.0
-                             : bmfrScale(f[m], bmfr_coefficients.v[base + BMFR_COEF_FMID + m],
-                                         bmfr_coefficients.v[base + BMFR_COEF_FINV + m]);
-            s += g * vec3(bmfr_coefficients.v[base + m * 3 + 0],
-                             bmfr_coefficients.v[base + m * 3 + 1],
-                             bmfr_coefficients.v[base + m * 3 + 2]);
+                             : bmfrScale(f[m], coefficients.v[base + BMFR_COEF_FMID + m],
+                                         coefficients.v[base + BMFR_COEF_FINV + m]);
+            s += g * vec3(coefficients.v[base + m * 3 + 0],
+                             coefficients.v[base + m * 3 + 1],
+                             coefficients.v[base + m * 3 + 2]);
         }
         y = bmfrFinite3(s) ? clamp(s, vec3(0.0), zMax) : z.rgb;
     }

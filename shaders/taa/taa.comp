@@ -17,7 +17,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 uniform sampler2D color;
 uniform sampler2D motion;
-uniform sampler2D history;
+uniform sampler2D prev_result;  // our own result of the previous frame (pass-declared history)
 layout(rgba32f) uniform writeonly image2D result;
 
 layout(push_constant) uniform Params {
@@ -46,9 +46,9 @@ vec4 current(ivec2 q, ivec2 lo, ivec2 hi) {
     return sanitize(texelFetch(color, clamp(q, lo, hi), 0));
 }
 vec3 historyTap(ivec2 q, ivec2 lo, ivec2 hi) {
-    // History is our own sanitized output, but the sanitize keeps a foreign history source (any
-    // delayed edge may feed this input) from spreading NaN.
-    return sanitize(texelFetch(history, clamp(q, lo, hi), 0)).rgb;
+    // History is our own output, sanitized when stored; sanitizing again costs little and keeps a
+    // NaN from ever spreading should that invariant break.
+    return sanitize(texelFetch(prev_result, clamp(q, lo, hi), 0)).rgb;
 }
 
 // Bilinear history at image position h (pixel centres at +0.5), taps clamped to the eye.

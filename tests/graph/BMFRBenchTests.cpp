@@ -17,6 +17,7 @@
 #include "core/scene/Camera.h"
 #include "core/scene/SceneGpu.h"
 #include "passes/BMFR/BMFRPass.h"
+#include "passes/RegisterPasses.h"
 #include "tests/unit/GpuTestFixture.h"
 
 using namespace fovea;

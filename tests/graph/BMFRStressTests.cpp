@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/util/Error.h"
 #include "tests/graph/BmfrTestUtil.h"
 #include "tests/unit/GpuTestFixture.h"
 
@@ -251,8 +252,10 @@ TEST_F(BMFRStressTest, AlbedoFeatureWithoutAlbedoInputIsAClearError) {
     try {
         BmfrHarness h(ctx(), in, R"({ "features": "albedo" })", {.albedo = false});
         FAIL() << "expected an error";
-    } catch (const std::exception& e) {
+    } catch (const InputError& e) {
+        // A compile-time input error (exit 2 in the CLI) that names the parameter's pointer.
         EXPECT_NE(std::string(e.what()).find("'albedo'"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("/params/features"), std::string::npos) << e.what();
     }
     // With the input connected the albedo feature set runs (M = 13) and stays finite.
     BmfrHarness h(ctx(), in, R"({ "features": "albedo" })", {.albedo = true});

@@ -391,6 +391,66 @@ TEST(CliValidate, DumpJsonParses) {
 
 // --- passes -----------------------------------------------------------------------------------
 
+// docs/passes/<Type>.md holds the field and parameter tables generated from the registry: every
+// registered type has a page and no page has drifted from the code.
+TEST(CliPasses, DocPagesAreCurrentForEveryPassType) {
+    Result r = cli({"passes", "--check-docs", (kRepo / "docs" / "passes").string()});
+    EXPECT_EQ(r.code, 0) << r.describe() << "\nrun: build/fovea passes --update-docs docs/passes";
+}
+
+TEST(CliPasses, CheckDocsCatchesDriftAndUpdateDocsRepairsIt) {
+    TempDir dir;
+    for (const auto& entry : fs::directory_iterator(kRepo / "docs" / "passes"))
+        fs::copy_file(entry.path(), dir.path() / entry.path().filename());
+    // A hand edit inside a generated table is drift.
+    const fs::path taa = dir.path() / "TAA.md";
+    std::string text = readText(taa);
+    const std::string row = "| `alpha` | float | `0.1` |";
+    const size_t at = text.find(row);
+    ASSERT_NE(at, std::string::npos) << text;
+    text.replace(at, row.size(), "| `alpha` | float | `0.2` |");
+    writeText(taa, text);
+    Result stale = cli({"passes", "--check-docs", dir.path().string()});
+    EXPECT_EQ(stale.code, 1) << stale.describe();
+    EXPECT_NE(stale.err.find("TAA.md"), std::string::npos) << stale.describe();
+    Result update = cli({"passes", "--update-docs", dir.path().string()});
+    EXPECT_EQ(update.code, 0) << update.describe();
+    EXPECT_EQ(readText(taa), readText(kRepo / "docs" / "passes" / "TAA.md"));
+    // A page without the markers, and a missing page, are named.
+    writeText(dir.path() / "Blit.md", "# Blit\n\nno tables\n");
+    fs::remove(dir.path() / "Tonemap.md");
+    Result broken = cli({"passes", "--check-docs", dir.path().string()});
+    EXPECT_EQ(broken.code, 1) << broken.describe();
+    EXPECT_NE(broken.err.find("Blit.md"), std::string::npos) << broken.describe();
+    EXPECT_NE(broken.err.find("missing the marker pair"), std::string::npos) << broken.describe();
+    EXPECT_NE(broken.err.find("Tonemap.md: missing"), std::string::npos) << broken.describe();
+}
+
+// The Koskela pipeline wires no history edge: TAA's and BMFR's histories are pass-declared, and
+// the dump shows them with their memory.
+TEST(CliValidate, DumpShowsPassDeclaredHistory) {
+    Result r = cli({"validate", (kRepo / "graphs" / "koskela_bmfr.json").string(), "--dump",
+                    "--size", "64x64"});
+    ASSERT_EQ(r.code, 0) << r.describe();
+    EXPECT_NE(r.out.find("taa.result  64x64 rgba32f  history ring 2 (pass keeps 1 previous frame)"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("bmfr.hist_accum  64x64 rgba32f  history ring 2"), std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("bmfr.coefficients  buffer 3456 B"), std::string::npos) << r.out;
+    EXPECT_EQ(readText(kRepo / "graphs" / "koskela_bmfr.json").find("taa.history"),
+              std::string::npos);
+}
+
+TEST(CliPasses, MarkdownShowsDeclaredHistoryAndBufferRules) {
+    Result r = cli({"passes", "BMFR", "--markdown"});
+    ASSERT_EQ(r.code, 0) << r.describe();
+    EXPECT_NE(r.out.find("`hist_accum` | internal, keeps 1 previous frame (`prev_hist_accum`)"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("0 B + 384 B per 32x32 block (+1 per axis)"), std::string::npos) << r.out;
+}
+
 TEST(CliPasses, JsonListsTheUtilityPasses) {
     Result r = cli({"passes", "--json"});
     ASSERT_EQ(r.code, 0) << r.describe();

@@ -20,6 +20,7 @@
 #include "core/graph/RenderGraph.h"
 #include "core/util/Error.h"
 #include "core/vk/Resources.h"
+#include "passes/RegisterPasses.h"
 #include "tests/unit/GpuTestFixture.h"
 
 using namespace fovea;
@@ -102,7 +103,7 @@ protected:
 
     static bool historyValid(const RenderGraph& g, const std::string& pass,
                              const std::string& input) {
-        return g.historyValidFor(g.plan().findNode(pass), input);
+        return g.historyValidFor(g.plan().findNode(pass), input, 1);
     }
 };
 

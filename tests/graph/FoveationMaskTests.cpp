@@ -15,17 +15,18 @@
 #include "core/graph/GraphDesc.h"
 #include "core/graph/PassRegistry.h"
 #include "core/graph/RenderGraph.h"
+#include "core/sampling/SampleLayout.h"
 #include "core/scene/BuiltinScenes.h"
 #include "core/scene/Camera.h"
 #include "core/scene/CameraGpu.h"
-#include "core/scene/SampleLayout.h"
 #include "core/scene/SceneGpu.h"
 #include "core/vk/Resources.h"
+#include "passes/RegisterPasses.h"
 #include "tests/unit/GpuTestFixture.h"
 
 using namespace fovea;
 using namespace fovea::graph;
-using scene::SampleLayout;
+using sampling::SampleLayout;
 
 namespace {
 
@@ -65,7 +66,7 @@ struct Model {
                   uint32_t width) const {
         float d = distance(c, x, y);
         uint32_t l = layer(d);
-        uint32_t h = scene::sampleListHash(y * width + x, seed);
+        uint32_t h = sampling::sampleListHash(y * width + x, seed);
         bool sampled = float(h >> 8) * (1.0f / 16777216.0f) < probability(d, l);
         return sampled ? (1u | (l << 1) | (spp[l] << 16)) : (l << 1);
     }
@@ -125,7 +126,7 @@ protected:
     }
     static SampleLayout layout(const RenderGraph& g) {
         return SampleLayout::parse(
-            g.bufferFor(g.plan().findNode("fm"), scene::kSampleLayoutField).download(ctx()));
+            g.bufferFor(g.plan().findNode("fm"), sampling::kSampleLayoutField).download(ctx()));
     }
     static PassStatus status(const RenderGraph& g) {
         return g.records()[g.plan().findNode("fm")].status;
@@ -134,12 +135,12 @@ protected:
     // The layout lists exactly the mask's sampled pixels, row-major, each with the mask's spp.
     static void expectLayoutMatchesMask(const SampleLayout& l, const std::vector<uint32_t>& m,
                                         uint32_t width, uint32_t height) {
-        EXPECT_TRUE(scene::validateSampleLayout(l, width, height).empty());
+        EXPECT_TRUE(sampling::validateSampleLayout(l, width, height).empty());
         size_t k = 0;
         for (uint32_t i = 0; i < m.size(); ++i) {
             if (!(m[i] & 1u)) continue;
             ASSERT_LT(k, l.entries.size()) << "layout shorter than the mask's sampled pixels";
-            ASSERT_EQ(l.entries[k].pixel, scene::packSamplePixel(i % width, i / width))
+            ASSERT_EQ(l.entries[k].pixel, sampling::packSamplePixel(i % width, i / width))
                 << "entry " << k;
             ASSERT_EQ(l.entries[k].samples, m[i] >> 16) << "entry " << k;
             ++k;
@@ -165,7 +166,7 @@ protected:
 // column; sampled pixels and samples against the model's expectation (sum of probabilities).
 TEST_F(FoveationMaskTest, FhdStereoLayerCountsMatchTheModel) {
     constexpr uint32_t kW = 1920, kH = 1080;
-    auto g = makeGraph(kW, kH, maskGraph(R"({ "capacity": 2073600 })"));
+    auto g = makeGraph(kW, kH, maskGraph("{}"));
     const scene::FrameCamera cam = camera(kW, kH, true);
     g->setCamera(cam);
     g->runFrame();
@@ -220,7 +221,8 @@ TEST_F(FoveationMaskTest, FhdStereoLayerCountsMatchTheModel) {
 
     expectLayoutMatchesMask(layout(*g), m, kW, kH);
     uint32_t maxSamples;
-    auto bytes = g->bufferFor(g->plan().findNode("fm"), scene::kSampleLayoutField).download(ctx());
+    auto bytes =
+        g->bufferFor(g->plan().findNode("fm"), sampling::kSampleLayoutField).download(ctx());
     std::memcpy(&maxSamples, bytes.data() + 4, 4);
     EXPECT_EQ(maxSamples, 4u);
 }
@@ -238,12 +240,12 @@ TEST_F(FoveationMaskTest, MaskMatchesTheCpuModelInPixelsAndDegrees) {
         model.spp[0] = 5;
         model.spp[1] = 2;
         model.spp[2] = 1;
-        model.seed = scene::sampleListSeed(kGraphSeed + 3ull * 0x9E3779B97F4A7C15ull, 0, false);
-        const std::string params =
-            std::string(R"({ "r0": )") + std::to_string(model.r0) + R"(, "r1": )" +
-            std::to_string(model.r1) + R"(, "radiusUnit": ")" + (degrees ? "degrees" : "pixels") +
-            R"(", "outerProbability": 0.25, "sppFovea": 5, )"
-            R"("sppMiddle": 2, "sppOuter": 1, "seed": 3, "capacity": 2048 })";
+        model.seed = sampling::sampleListSeed(kGraphSeed + 3ull * 0x9E3779B97F4A7C15ull, 0, false);
+        const std::string params = std::string(R"({ "r0": )") + std::to_string(model.r0) +
+                                   R"(, "r1": )" + std::to_string(model.r1) +
+                                   R"(, "radiusUnit": ")" + (degrees ? "degrees" : "pixels") +
+                                   R"(", "outerProbability": 0.25, "sppFovea": 5, )"
+                                   R"("sppMiddle": 2, "sppOuter": 1, "seed": 3 })";
         auto g = makeGraph(kW, kH, maskGraph(params));
         g->setCamera(cam);
         g->runFrame();
@@ -260,7 +262,7 @@ TEST_F(FoveationMaskTest, MaskMatchesTheCpuModelInPixelsAndDegrees) {
 
 TEST_F(FoveationMaskTest, SameSeedSameMaskOtherSeedOtherAndCachedUntilGazeChanges) {
     constexpr uint32_t kW = 64, kH = 32;
-    const std::string p = R"({ "r0": 4, "r1": 10, "capacity": 2048, "seed": )";
+    const std::string p = R"({ "r0": 4, "r1": 10 , "seed": )";
     auto a = makeGraph(kW, kH, maskGraph(p + "1 }"));
     auto b = makeGraph(kW, kH, maskGraph(p + "1 }"));
     auto c = makeGraph(kW, kH, maskGraph(p + "2 }"));
@@ -287,7 +289,7 @@ TEST_F(FoveationMaskTest, SameSeedSameMaskOtherSeedOtherAndCachedUntilGazeChange
 
     // animate: a new toss every frame, never cached.
     auto anim = makeGraph(kW, kH,
-                          maskGraph(R"({ "r0": 4, "r1": 10, "capacity": 2048, )"
+                          maskGraph(R"({ "r0": 4, "r1": 10 , )"
                                     R"("animate": true })"));
     anim->setCamera(cam);
     anim->runFrame();
@@ -301,7 +303,7 @@ TEST_F(FoveationMaskTest, SameSeedSameMaskOtherSeedOtherAndCachedUntilGazeChange
 TEST_F(FoveationMaskTest, EachEyeUsesItsOwnGaze) {
     constexpr uint32_t kW = 96, kH = 32;  // 48x32 per eye
     const glm::vec2 gaze[2] = {{0.25f, 0.3f}, {0.7f, 0.75f}};
-    auto g = makeGraph(kW, kH, maskGraph(R"({ "r0": 5, "r1": 9, "capacity": 4096 })"));
+    auto g = makeGraph(kW, kH, maskGraph(R"({ "r0": 5, "r1": 9 })"));
     g->setCamera(camera(kW, kH, true, gaze[0], gaze[1]));
     g->runFrame();
     const auto m = mask(*g);
@@ -330,7 +332,7 @@ TEST_F(FoveationMaskTest, PathTraceTracesExactlyTheMaskPixels) {
     auto g = makeGraph(
         kW, kH,
         maskGraph(R"({ "r0": 3, "r1": 6, "sppFovea": 3, "sppMiddle": 2, )"
-                  R"("sppOuter": 1, "capacity": 512 })",
+                  R"("sppOuter": 1 })",
                   R"(, { "name": "pt", "type": "PathTrace", "params": { "spp": 7 } })",
                   R"({ "from": "fm.layout", "to": "pt.layout" })", R"("pt.radiance", "fm.mask")"));
     g->setCamera(camera(kW, kH, true, {0.4f, 0.5f}, {0.6f, 0.5f}));
@@ -356,10 +358,8 @@ TEST_F(FoveationMaskTest, BadParametersAreClearErrors) {
             EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
         }
     };
-    expectError(R"({ "r0": 10, "r1": 5, "capacity": 512 })", "params.r1");
-    expectError(R"({ "capacity": 100 })", "capacity");
-    expectError(R"({ "radiusUnit": "degrees", "r0": 10, "r1": 200, "capacity": 512 })",
-                "params.r1");
+    expectError(R"({ "r0": 10, "r1": 5 })", "params.r1");
+    expectError(R"({ "radiusUnit": "degrees", "r0": 10, "r1": 200 })", "params.r1");
 }
 
 }  // namespace

@@ -15,11 +15,12 @@
 #include "core/graph/GraphDesc.h"
 #include "core/graph/PassRegistry.h"
 #include "core/graph/RenderGraph.h"
+#include "core/sampling/SampleLayout.h"
 #include "core/scene/BuiltinScenes.h"
 #include "core/scene/Camera.h"
-#include "core/scene/SampleLayout.h"
 #include "core/scene/SceneGpu.h"
 #include "core/vk/Resources.h"
+#include "passes/RegisterPasses.h"
 #include "tests/unit/GpuTestFixture.h"
 
 using namespace fovea;

@@ -21,6 +21,7 @@
 #include "core/vk/Context.h"
 #include "core/vk/Formats.h"
 #include "core/vk/Resources.h"
+#include "passes/RegisterPasses.h"
 
 namespace fovea::test {
 

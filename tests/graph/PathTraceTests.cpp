@@ -25,6 +25,7 @@
 #include "core/scene/SceneLoader.h"
 #include "core/vk/Resources.h"
 #include "passes/PathTrace/PathTracePass.h"
+#include "passes/RegisterPasses.h"
 #include "tests/unit/GpuTestFixture.h"
 
 using namespace fovea;
@@ -294,7 +295,7 @@ TEST_F(PathTraceTest, SameSeedIsBitIdenticalOtherSeedDiffers) {
 
 TEST_F(PathTraceTest, LayoutTracesOnlyListedPixelsWithTheirCount) {
     std::string list = R"(, { "name": "list", "type": "SampleList", "params": )"
-                       R"({ "pattern": "checkerboard", "spp": 3, "capacity": 1024 } })";
+                       R"({ "pattern": "checkerboard", "spp": 3 } })";
     auto g = makeGraph(
         "builtin:cornell",
         graphText(

@@ -1,4 +1,4 @@
-// Sample layouts: the CPU side (core/scene/SampleLayout.h: byte layout, parse, validation) and
+// Sample layouts: the CPU side (core/sampling/SampleLayout.h: byte layout, parse, validation) and
 // the SampleList pass on the GPU (patterns give the expected entries in row-major order, match
 // the CPU builder exactly, are deterministic per seed and change per frame only when animated).
 #include <gtest/gtest.h>
@@ -10,14 +10,15 @@
 #include "core/graph/GraphDesc.h"
 #include "core/graph/PassRegistry.h"
 #include "core/graph/RenderGraph.h"
-#include "core/scene/SampleLayout.h"
+#include "core/sampling/SampleLayout.h"
 #include "core/util/Error.h"
 #include "core/vk/Resources.h"
+#include "passes/RegisterPasses.h"
 #include "tests/unit/GpuTestFixture.h"
 
 using namespace fovea;
 using namespace fovea::graph;
-using scene::SampleLayout;
+using sampling::SampleLayout;
 
 namespace {
 
@@ -38,7 +39,7 @@ TEST(SampleLayoutCpu, BytesFollowTheStd430LayoutAndParseBack) {
     EXPECT_EQ(words[6], 65535u | (7u << 16));
     const SampleLayout back = SampleLayout::parse(bytes);
     ASSERT_EQ(back.entries.size(), 2u);
-    EXPECT_EQ(scene::unpackSamplePixel(back.entries[1].pixel), glm::uvec2(65535, 7));
+    EXPECT_EQ(sampling::unpackSamplePixel(back.entries[1].pixel), glm::uvec2(65535, 7));
     EXPECT_EQ(back.totalSamples(), 11u);
 }
 
@@ -58,27 +59,27 @@ TEST(SampleLayoutCpu, ValidationNamesBadEntries) {
     l.add(4, 0, 1);  // outside a 4x4 image
     l.add(1, 1, 0);  // zero samples
     l.add(0, 0, 2);  // duplicate
-    const auto issues = scene::validateSampleLayout(l, 4, 4);
+    const auto issues = sampling::validateSampleLayout(l, 4, 4);
     ASSERT_EQ(issues.size(), 3u);
     EXPECT_NE(issues[0].find("outside"), std::string::npos) << issues[0];
     EXPECT_NE(issues[1].find("sample count 0"), std::string::npos) << issues[1];
     EXPECT_NE(issues[2].find("twice"), std::string::npos) << issues[2];
     l.entries.resize(1);
-    EXPECT_TRUE(scene::validateSampleLayout(l, 4, 4).empty());
+    EXPECT_TRUE(sampling::validateSampleLayout(l, 4, 4).empty());
 }
 
 TEST(SampleLayoutCpu, PatternsSelectTheDocumentedPixels) {
-    scene::SamplePatternOptions o;
-    o.pattern = scene::SamplePattern::Checkerboard;
-    EXPECT_EQ(scene::buildSampleLayout(o, 6, 5).entries.size(), 15u);
-    o.pattern = scene::SamplePattern::EveryNth;
+    sampling::SamplePatternOptions o;
+    o.pattern = sampling::SamplePattern::Checkerboard;
+    EXPECT_EQ(sampling::buildSampleLayout(o, 6, 5).entries.size(), 15u);
+    o.pattern = sampling::SamplePattern::EveryNth;
     o.n = 7;
-    EXPECT_EQ(scene::buildSampleLayout(o, 10, 10).entries.size(), 15u);  // ceil(100 / 7)
-    o.pattern = scene::SamplePattern::Random;
+    EXPECT_EQ(sampling::buildSampleLayout(o, 10, 10).entries.size(), 15u);  // ceil(100 / 7)
+    o.pattern = sampling::SamplePattern::Random;
     o.fraction = 0.0f;
-    EXPECT_TRUE(scene::buildSampleLayout(o, 8, 8).entries.empty());
+    EXPECT_TRUE(sampling::buildSampleLayout(o, 8, 8).entries.empty());
     o.fraction = 1.0f;
-    EXPECT_EQ(scene::buildSampleLayout(o, 8, 8).entries.size(), 64u);
+    EXPECT_EQ(sampling::buildSampleLayout(o, 8, 8).entries.size(), 64u);
 }
 
 // --- GPU: the SampleList pass -------------------------------------------------------------------
@@ -105,66 +106,66 @@ protected:
 
     static SampleLayout layout(const RenderGraph& g) {
         return SampleLayout::parse(
-            g.bufferFor(g.plan().findNode("list"), scene::kSampleLayoutField).download(ctx()));
+            g.bufferFor(g.plan().findNode("list"), sampling::kSampleLayoutField).download(ctx()));
     }
 
     static uint32_t header(const RenderGraph& g, int word) {
         auto bytes =
-            g.bufferFor(g.plan().findNode("list"), scene::kSampleLayoutField).download(ctx());
+            g.bufferFor(g.plan().findNode("list"), sampling::kSampleLayoutField).download(ctx());
         uint32_t v;
         std::memcpy(&v, bytes.data() + 4 * word, 4);
         return v;
     }
 
     // Runs one frame and checks the GPU list against the CPU builder with the pass's options.
-    static SampleLayout runAndCompare(RenderGraph& g, scene::SamplePatternOptions expected) {
+    static SampleLayout runAndCompare(RenderGraph& g, sampling::SamplePatternOptions expected) {
         g.runFrame();
         SampleLayout got = layout(g);
-        const SampleLayout want = scene::buildSampleLayout(expected, kW, kH);
+        const SampleLayout want = sampling::buildSampleLayout(expected, kW, kH);
         EXPECT_EQ(got.entries.size(), want.entries.size());
         for (size_t i = 0; i < std::min(got.entries.size(), want.entries.size()); ++i) {
             EXPECT_EQ(got.entries[i].pixel, want.entries[i].pixel) << "entry " << i;
             EXPECT_EQ(got.entries[i].samples, want.entries[i].samples) << "entry " << i;
         }
-        EXPECT_TRUE(scene::validateSampleLayout(got, kW, kH).empty());
+        EXPECT_TRUE(sampling::validateSampleLayout(got, kW, kH).empty());
         return got;
     }
 };
 
 TEST_F(SampleListTest, AllListsEveryPixelRowMajorWithItsSpp) {
-    auto g = makeGraph(R"({ "pattern": "all", "spp": 3, "capacity": 2000 })");
-    scene::SamplePatternOptions o;
+    auto g = makeGraph(R"({ "pattern": "all", "spp": 3 })");
+    sampling::SamplePatternOptions o;
     o.samples = 3;
     const SampleLayout l = runAndCompare(*g, o);
     ASSERT_EQ(l.entries.size(), size_t(kW) * kH);
-    EXPECT_EQ(scene::unpackSamplePixel(l.entries[kW + 1].pixel), glm::uvec2(1, 1));
+    EXPECT_EQ(sampling::unpackSamplePixel(l.entries[kW + 1].pixel), glm::uvec2(1, 1));
     EXPECT_EQ(l.totalSamples(), 3u * kW * kH);
     EXPECT_EQ(header(*g, 1), 3u) << "maxSamples";
 }
 
 TEST_F(SampleListTest, CheckerboardAndEveryNthGiveExpectedCounts) {
-    auto g = makeGraph(R"({ "pattern": "checkerboard", "capacity": 2000 })");
-    scene::SamplePatternOptions o;
-    o.pattern = scene::SamplePattern::Checkerboard;
+    auto g = makeGraph(R"({ "pattern": "checkerboard" })");
+    sampling::SamplePatternOptions o;
+    o.pattern = sampling::SamplePattern::Checkerboard;
     const SampleLayout l = runAndCompare(*g, o);
     EXPECT_EQ(l.entries.size(), size_t(kW) * kH / 2);
     for (const auto& e : l.entries) {
-        glm::uvec2 p = scene::unpackSamplePixel(e.pixel);
+        glm::uvec2 p = sampling::unpackSamplePixel(e.pixel);
         EXPECT_EQ((p.x + p.y) % 2, 0u);
     }
 
-    auto nth = makeGraph(R"({ "pattern": "every_nth", "n": 7, "capacity": 2000 })");
-    o.pattern = scene::SamplePattern::EveryNth;
+    auto nth = makeGraph(R"({ "pattern": "every_nth", "n": 7 })");
+    o.pattern = sampling::SamplePattern::EveryNth;
     o.n = 7;
     EXPECT_EQ(runAndCompare(*nth, o).entries.size(), (size_t(kW) * kH + 6) / 7);
 }
 
 TEST_F(SampleListTest, RandomIsDeterministicPerSeedAndAnimatesOnlyWhenAsked) {
-    auto a = makeGraph(R"({ "pattern": "random", "fraction": 0.3, "seed": 5, "capacity": 2000 })");
-    auto b = makeGraph(R"({ "pattern": "random", "fraction": 0.3, "seed": 5, "capacity": 2000 })");
-    auto c = makeGraph(R"({ "pattern": "random", "fraction": 0.3, "seed": 6, "capacity": 2000 })");
-    scene::SamplePatternOptions o;
-    o.pattern = scene::SamplePattern::Random;
+    auto a = makeGraph(R"({ "pattern": "random", "fraction": 0.3, "seed": 5 })");
+    auto b = makeGraph(R"({ "pattern": "random", "fraction": 0.3, "seed": 5 })");
+    auto c = makeGraph(R"({ "pattern": "random", "fraction": 0.3, "seed": 6 })");
+    sampling::SamplePatternOptions o;
+    o.pattern = sampling::SamplePattern::Random;
     o.fraction = 0.3f;
     a->runFrame();
     b->runFrame();
@@ -176,15 +177,14 @@ TEST_F(SampleListTest, RandomIsDeterministicPerSeedAndAnimatesOnlyWhenAsked) {
     // About 30% of 960 pixels (binomial sd ~14): a broken threshold would be far off.
     EXPECT_GT(la.entries.size(), 220u);
     EXPECT_LT(la.entries.size(), 360u);
-    EXPECT_TRUE(scene::validateSampleLayout(la, kW, kH).empty());
+    EXPECT_TRUE(sampling::validateSampleLayout(la, kW, kH).empty());
 
     // Not animated: the same list next frame (and the pass is served from the cache).
     a->runFrame();
     EXPECT_EQ(layout(*a).bytes(), la.bytes());
     EXPECT_EQ(a->records()[a->plan().findNode("list")].status, PassStatus::Cached);
 
-    auto anim =
-        makeGraph(R"({ "pattern": "random", "fraction": 0.3, "animate": true, "capacity": 2000 })");
+    auto anim = makeGraph(R"({ "pattern": "random", "fraction": 0.3, "animate": true })");
     anim->runFrame();
     const SampleLayout f0 = layout(*anim);
     anim->runFrame();
@@ -192,25 +192,24 @@ TEST_F(SampleListTest, RandomIsDeterministicPerSeedAndAnimatesOnlyWhenAsked) {
 }
 
 TEST_F(SampleListTest, RandomMatchesTheCpuBuilderBitForBit) {
-    auto g = makeGraph(R"({ "pattern": "random", "fraction": 0.5, "seed": 11, "spp": 2, )"
-                       R"("capacity": 2000 })");
+    auto g = makeGraph(R"({ "pattern": "random", "fraction": 0.5, "seed": 11, "spp": 2 })");
     g->setSeed(1234);
-    scene::SamplePatternOptions o;
-    o.pattern = scene::SamplePattern::Random;
+    sampling::SamplePatternOptions o;
+    o.pattern = sampling::SamplePattern::Random;
     o.fraction = 0.5f;
     o.samples = 2;
     // The pass's seed rule (SampleListPass::options): run seed mixed with the pass seed.
-    o.seed = scene::sampleListSeed(1234ull + 11ull * 0x9E3779B97F4A7C15ull, 0, false);
+    o.seed = sampling::sampleListSeed(1234ull + 11ull * 0x9E3779B97F4A7C15ull, 0, false);
     runAndCompare(*g, o);
 }
 
-TEST_F(SampleListTest, TooSmallCapacityIsAClearError) {
-    try {
-        makeGraph(R"({ "capacity": 100 })");
-        FAIL() << "expected an error";
-    } catch (const std::exception& e) {
-        EXPECT_NE(std::string(e.what()).find("capacity"), std::string::npos) << e.what();
-    }
+// The layout buffer follows the render size (16-byte header + 8 bytes per pixel): no capacity
+// parameter to get wrong, at any size.
+TEST_F(SampleListTest, LayoutBufferFollowsTheRenderSize) {
+    auto g = makeGraph(R"({ "pattern": "all" })");
+    const auto& plan = g->plan();
+    const auto& r = plan.resources[plan.resourceOf.at({plan.findNode("list"), "layout"})];
+    EXPECT_EQ(r.bufferBytes, 16u + 8u * kW * kH);
 }
 
 }  // namespace

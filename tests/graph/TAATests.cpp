@@ -4,7 +4,7 @@
 // of the shader), ghost removal by the min/max and variance clips, reset on camera cut and on
 // an invalid history, NaN/Inf never reaching the history, and no read across the stereo seam.
 // Inputs come from a no-op "Feed" pass whose persistent outputs the test uploads every frame;
-// TAA's `result` feeds its own `history` through a delay-1 edge, as in a real graph.
+// TAA's history is its own previous `result`, kept by the graph (pass-declared history).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -22,6 +22,7 @@
 #include "core/scene/Camera.h"
 #include "core/scene/SceneGpu.h"
 #include "core/vk/Resources.h"
+#include "passes/RegisterPasses.h"
 #include "passes/TAA/TAAPass.h"
 #include "tests/graph/FeedPass.h"
 #include "tests/unit/GpuTestFixture.h"
@@ -223,13 +224,12 @@ bool allFinite(const Image& img) {
     return std::all_of(img.begin(), img.end(), [](float v) { return std::isfinite(v); });
 }
 
-// Feed -> TAA with its result fed back into history (delay 1). One instance per test.
+// Feed -> TAA (the graph keeps TAA's previous result as its history). One instance per test.
 class TaaRig {
 public:
     TaaRig(gpu::Context& gpu, int w, int h, const std::string& params, bool useMotion = true)
         : mGpu(gpu), mGraph(gpu, registry()), mW(w), mH(h), mUseMotion(useMotion) {
-        std::string edges = R"({ "from": "feed.color", "to": "taa.color" },
-            { "from": "taa.result", "to": "taa.history", "delay": 1 })";
+        std::string edges = R"({ "from": "feed.color", "to": "taa.color" })";
         if (useMotion) edges += R"(, { "from": "feed.motion", "to": "taa.motion" })";
         const std::string text =
             R"({ "version": 1, "name": "taa_test", "passes": [ { "name": "feed", "type": )"
@@ -524,8 +524,7 @@ TEST_F(TAATest, JitterFlowsThroughGBufferIntoTAA) {
     const std::string text = R"({ "version": 1, "name": "taa_jitter", "passes": [
         { "name": "gb", "type": "GBuffer" },
         { "name": "taa", "type": "TAA", "params": { "alpha": 0.125, "clip": "none" } } ],
-      "edges": [ { "from": "gb.albedo", "to": "taa.color" }, { "from": "gb.motion", "to": "taa.motion" },
-                 { "from": "taa.result", "to": "taa.history", "delay": 1 } ],
+      "edges": [ { "from": "gb.albedo", "to": "taa.color" }, { "from": "gb.motion", "to": "taa.motion" } ],
       "outputs": [ "taa.result", "gb.albedo", "gb.motion" ] })";
     CompileOptions o;
     o.width = o.height = n;

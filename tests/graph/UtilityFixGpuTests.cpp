@@ -26,6 +26,7 @@
 #include "core/vk/Formats.h"
 #include "core/vk/Resources.h"
 #include "passes/ImageSource/ImageSourcePass.h"
+#include "passes/RegisterPasses.h"
 #include "tests/unit/GpuTestFixture.h"
 
 namespace fs = std::filesystem;

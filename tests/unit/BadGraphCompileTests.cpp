@@ -15,6 +15,7 @@
 #include "core/graph/GraphDesc.h"
 #include "core/graph/PassRegistry.h"
 #include "core/util/Error.h"
+#include "passes/RegisterPasses.h"
 
 namespace fs = std::filesystem;
 using namespace fovea;

@@ -1,4 +1,4 @@
-// The CPU compile stages of the render graph (core/graph/Compiler*.cpp, PlanDump.cpp): culling
+// The CPU compile stages of the render graph (core/graph/Compile*.cpp, PlanDump.cpp): culling
 // with reasons, deterministic order, resource resolution, aliasing, barriers, history rings and
 // the dumps. Graphs use the test pass types of TestPasses.h in a local registry; no GPU.
 #include <gtest/gtest.h>
@@ -875,7 +875,8 @@ TEST(CompilerDump, Text) {
              "  src.color  64x64 rgba32f  transient  live [0, 1]  alias group 0\n",
              "  f3.out  64x64 rgba32f  transient  live [3, 4]  alias group 1\n",
              "  f4.out  64x64 rgba32f  output  live [0, 4]\n",
-             "memory: transient 131072 B (without aliasing 262144 B), persistent 65536 B\n",
+             "memory: transient 131072 B (without aliasing 262144 B), persistent 65536 B (of which "
+             "history 0 B)\n",
          })
         EXPECT_NE(text.find(expected), std::string::npos) << "missing: " << expected << "\nin:\n"
                                                           << text;

@@ -154,6 +154,66 @@ public:
     glm::vec3 tint{-1.0f};
 };
 
+// input `in`; output `out` keeping 2 previous frames, internal `state` keeping 1 (pass-declared
+// history).
+class Temporal : public TestPass {
+public:
+    void reflect(graph::Reflection& r) const override {
+        r.input("in", kRgba32f);
+        r.output("out", kRgba32f).sameAs("in").history(2);
+        r.internal("state", vk::Format::eR32Sfloat).sameAs("in").history();
+    }
+};
+
+// Parameters checked against each other and the edges (Pass::validate): lo <= hi, and
+// useAux = true needs the optional input `aux` connected.
+class Checked : public TestPass {
+public:
+    void params(graph::ParamVisitor& v) override {
+        v.add("lo", lo, 0.0f, "lower bound", {0, 100});
+        v.add("hi", hi, 1.0f, "upper bound; >= lo", {0, 100});
+        v.add("useAux", useAux, false, "read `aux` (must then be connected)");
+    }
+    void reflect(graph::Reflection& r) const override {
+        r.input("in", kRgba32f);
+        r.input("aux", kRgba32f).optional();
+        r.output("out", kRgba32f).sameAs("in");
+    }
+    void validate(const graph::ValidateContext& ctx) const override {
+        if (hi < lo) ctx.fail("hi", "must be >= lo");
+        if (useAux && !ctx.connected("aux")) ctx.fail("useAux", "needs the input 'aux'");
+    }
+    float lo = 0, hi = 0;
+    bool useAux = false;
+};
+
+// Buffers sized by the render size: `list` 16 + 8 per pixel, `blocks` 384 per 32x32 block with
+// one extra block per axis.
+class SizedBuffers : public TestPass {
+public:
+    void reflect(graph::Reflection& r) const override {
+        r.output("list", {}).bufferPerPixel(8, 16);
+        r.output("blocks", {}).bufferPerBlock(32, 384, 0, 1);
+    }
+};
+
+// Output `mask`: depends on the camera only (no scene geometry needed), cacheable.
+class CameraOnly : public TestPass {
+public:
+    void reflect(graph::Reflection& r) const override { r.output("mask", kRgba32f).screen(); }
+    bool usesCamera() const override { return true; }
+    bool cacheable() const override { return true; }
+};
+
+// A mistake a pass author can make: history on an input.
+class HistoryOnInput : public TestPass {
+public:
+    void reflect(graph::Reflection& r) const override {
+        r.input("in", kRgba32f).history();
+        r.output("out", kRgba32f);
+    }
+};
+
 template <class T>
 graph::PassTypeInfo testInfo(const char* type) {
     return {type, std::string("test pass ") + type, [] { return std::make_unique<T>(); }};
@@ -175,6 +235,11 @@ inline graph::PassRegistry testRegistry() {
     r.add(testInfo<BufferConsumer>("BufferConsumer"));
     r.add(testInfo<Internal>("Internal"));
     r.add(testInfo<AllParams>("AllParams"));
+    r.add(testInfo<Temporal>("Temporal"));
+    r.add(testInfo<Checked>("Checked"));
+    r.add(testInfo<SizedBuffers>("SizedBuffers"));
+    r.add(testInfo<CameraOnly>("CameraOnly"));
+    r.add(testInfo<HistoryOnInput>("HistoryOnInput"));
     return r;
 }
 

@@ -21,7 +21,7 @@ class ComputePipeline;
 class Context;
 }  // namespace fovea::gpu
 
-namespace fovea::scene {
+namespace fovea::sampling {
 
 struct SampleLayoutHeader {
     uint32_t count = 0;       // entries that follow (a reader clamps it to the buffer's length)
@@ -40,6 +40,9 @@ inline constexpr uint32_t kSampleLayoutMaxCoordinate = 0xFFFFu;  // 16 bits per 
 // The graph field name and the GLSL block instance name (shaders/common/sample_layout.glsl).
 inline constexpr const char* kSampleLayoutField = "layout";
 inline constexpr const char* kSampleLayoutBinding = "sample_layout";
+
+// Throws InputError when a width x height image has coordinates a layout cannot store.
+void checkSampleLayoutSize(uint32_t width, uint32_t height);
 
 inline uint64_t sampleLayoutBytes(uint64_t entries) {
     return kSampleLayoutHeaderBytes + entries * kSampleLayoutEntryBytes;
@@ -115,4 +118,4 @@ private:
     std::unique_ptr<gpu::Buffer> mZero;
 };
 
-}  // namespace fovea::scene
+}  // namespace fovea::sampling

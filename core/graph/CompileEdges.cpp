@@ -1,4 +1,4 @@
-// Compile stages 1-3: instantiate passes, reflect, check edges/formats/cycles.
+// Compile stage 3: edges (fields exist, direction, formats, required inputs, outputs, cycles).
 #include <algorithm>
 #include <functional>
 #include <set>
@@ -10,49 +10,6 @@
 #include "core/vk/Formats.h"
 
 namespace fovea::graph {
-
-size_t CompiledPlan::findNode(const std::string& name) const {
-    for (size_t i = 0; i < nodes.size(); ++i)
-        if (nodes[i].name == name) return i;
-    return kNone;
-}
-
-int CompiledPlan::positionOf(size_t node) const {
-    for (size_t i = 0; i < order.size(); ++i)
-        if (order[i] == node) return static_cast<int>(i);
-    return -1;
-}
-
-void instantiatePasses(const GraphDesc& desc, const PassRegistry& registry, CompiledPlan& plan) {
-    plan.file = desc.file;
-    for (size_t i = 0; i < desc.passes.size(); ++i) {
-        const PassDesc& p = desc.passes[i];
-        if (!registry.find(p.type))
-            throw InputError(desc.file, p.pointer + "/type",
-                             "unknown pass type '" + p.type + "'" +
-                                 didYouMean(p.type, registry.types()) +
-                                 " (run 'fovea passes' for the list)");
-        PassNode node;
-        node.name = p.name;
-        node.type = p.type;
-        node.pointer = p.pointer;
-        node.descIndex = i;
-        node.pass = registry.create(p.type, p.name);
-        loadParams(*node.pass, p.params, desc.file, p.pointer + "/params");
-        if (!p.enabled) {
-            node.alive = false;
-            node.cullReason = "disabled in the graph file (\"enabled\": false)";
-        }
-        plan.nodes.push_back(std::move(node));
-    }
-}
-
-void reflectPasses(CompiledPlan& plan) {
-    for (auto& node : plan.nodes) {
-        node.reflection = Reflection();
-        node.pass->reflect(node.reflection);
-    }
-}
 
 namespace {
 

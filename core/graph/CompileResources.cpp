@@ -1,54 +1,13 @@
-// Compile stages 6-8: resource resolution, aliasing of transient images, barrier plan.
+// Compile stage 6: one resource per live output/internal: sizes, formats, lifetimes, history
+// rings, use intervals; input size rules and bypass pairs are checked here.
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "core/graph/CompilerStages.h"
 #include "core/util/Error.h"
-#include "core/vk/Formats.h"
 
 namespace fovea::graph {
-
-const char* lifetimeName(Lifetime l) {
-    switch (l) {
-        case Lifetime::Transient:
-            return "transient";
-        case Lifetime::Output:
-            return "output";
-        case Lifetime::History:
-            return "history";
-        case Lifetime::Persistent:
-            return "persistent";
-    }
-    return "?";
-}
-
-uint64_t ResourcePlan::bytes() const {
-    if (!isImage) return bufferBytes;
-    return uint64_t(width) * height * gpu::formatBytesPerPixel(format);
-}
-
-uint64_t CompiledPlan::transientBytes() const {
-    uint64_t total = 0;
-    for (const auto& g : aliasGroups) total += g.bytes;
-    for (const auto& r : resources)
-        if (r.lifetime == Lifetime::Transient && r.aliasGroup < 0) total += r.bytes();
-    return total;
-}
-
-uint64_t CompiledPlan::transientBytesWithoutAliasing() const {
-    uint64_t total = 0;
-    for (const auto& r : resources)
-        if (r.lifetime == Lifetime::Transient) total += r.bytes();
-    return total;
-}
-
-uint64_t CompiledPlan::persistentBytes() const {
-    uint64_t total = 0;
-    for (const auto& r : resources)
-        if (r.lifetime != Lifetime::Transient) total += r.bytes() * r.ringSize;
-    return total;
-}
 
 namespace {
 
@@ -139,9 +98,14 @@ void resolveResources(CompiledPlan& plan) {
             r.field = f.name;
             r.isImage = f.isImage();
             r.format = f.format;
-            r.bufferBytes = f.bufferBytes;
+            r.bufferBytes = f.isImage() ? 0 : f.buffer.bytes(plan.options.width, plan.options.height);
             r.firstUse = r.lastUse = pos;
             if (f.persistent || plan.nodes[n].pass->cacheable()) r.lifetime = Lifetime::Persistent;
+            if (f.historyFrames > 0) {  // images only (checked by reflectPasses)
+                r.lifetime = Lifetime::History;
+                r.declaredHistory = f.historyFrames;
+                r.ringSize = f.historyFrames + 1;
+            }
             plan.resourceOf[{n, f.name}] = plan.resources.size();
             plan.resources.push_back(r);
         }
@@ -195,95 +159,6 @@ void resolveResources(CompiledPlan& plan) {
             r.firstUse = 0;
             r.lastUse = int(plan.order.size()) - 1;
         }
-}
-
-void aliasResources(CompiledPlan& plan) {
-    plan.aliasGroups.clear();
-    for (auto& r : plan.resources) r.aliasGroup = -1;
-    if (!plan.options.aliasing) return;
-    std::vector<size_t> transient;
-    for (size_t i = 0; i < plan.resources.size(); ++i)
-        if (plan.resources[i].lifetime == Lifetime::Transient && plan.resources[i].isImage)
-            transient.push_back(i);
-    // Greedy interval colouring: by first use; join the free group whose size is closest.
-    std::stable_sort(transient.begin(), transient.end(), [&](size_t a, size_t b) {
-        return plan.resources[a].firstUse < plan.resources[b].firstUse;
-    });
-    std::vector<int> groupLastUse;
-    for (size_t i : transient) {
-        ResourcePlan& r = plan.resources[i];
-        int best = -1;
-        uint64_t bestCost = ~0ull;
-        for (size_t g = 0; g < plan.aliasGroups.size(); ++g) {
-            if (groupLastUse[g] >= r.firstUse) continue;  // still in use: lifetimes overlap
-            uint64_t gb = plan.aliasGroups[g].bytes, rb = r.bytes();
-            uint64_t cost = gb > rb ? gb - rb : rb - gb;
-            if (cost < bestCost) {
-                bestCost = cost;
-                best = int(g);
-            }
-        }
-        if (best < 0) {
-            best = int(plan.aliasGroups.size());
-            plan.aliasGroups.emplace_back();
-            groupLastUse.push_back(-1);
-        }
-        AliasGroup& g = plan.aliasGroups[best];
-        g.members.push_back(i);
-        g.bytes = std::max(g.bytes, r.bytes());
-        groupLastUse[best] = r.lastUse;
-        r.aliasGroup = best;
-    }
-}
-
-void planBarriers(CompiledPlan& plan) {
-    plan.barriers.clear();
-    // One global memory barrier covers every write before it, so a read only needs a barrier
-    // when its writer ran after the last one. Aliased images get a layout initialization at
-    // their first write (the previous member's content is garbage by then).
-    int lastBarrier = -1;
-    for (int pos = 0; pos < int(plan.order.size()); ++pos) {
-        size_t n = plan.order[pos];
-        BarrierPlan b;
-        b.position = pos;
-        for (const auto& [key, src] : plan.inputs) {
-            if (key.first != n || src.delay > 0) continue;
-            int writer = plan.positionOf(src.node);
-            // A barrier at position p sits before pass p, so it covers writers at positions < p.
-            if (writer >= lastBarrier && writer < pos)
-                b.hazards.push_back("RAW " + plan.nodes[n].name + "." + key.second + " <- " +
-                                    plan.resources[src.resource].name);
-        }
-        for (size_t i = 0; i < plan.resources.size(); ++i) {
-            const ResourcePlan& r = plan.resources[i];
-            if (r.aliasGroup < 0 || r.firstUse != pos) continue;
-            b.initialize.push_back(i);
-            const auto& members = plan.aliasGroups[r.aliasGroup].members;
-            auto it = std::find(members.begin(), members.end(), i);
-            if (it != members.begin())
-                b.hazards.push_back("WAR alias " + r.name + " reuses the memory of " +
-                                    plan.resources[*(it - 1)].name);
-        }
-        if (!b.hazards.empty() || !b.initialize.empty()) {
-            plan.barriers.push_back(b);
-            lastBarrier = pos;
-        }
-    }
-}
-
-CompiledPlan compileGraphPlan(const GraphDesc& desc, const PassRegistry& registry,
-                              const CompileOptions& options) {
-    CompiledPlan plan;
-    plan.options = options;
-    instantiatePasses(desc, registry, plan);
-    reflectPasses(plan);
-    checkEdges(desc, plan);
-    cullPasses(plan);
-    orderPasses(plan);
-    resolveResources(plan);
-    aliasResources(plan);
-    planBarriers(plan);
-    return plan;
 }
 
 }  // namespace fovea::graph

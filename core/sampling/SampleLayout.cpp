@@ -1,4 +1,4 @@
-#include "core/scene/SampleLayout.h"
+#include "core/sampling/SampleLayout.h"
 
 #include <algorithm>
 #include <cstring>
@@ -9,7 +9,7 @@
 #include "core/vk/Context.h"
 #include "core/vk/Resources.h"
 
-namespace fovea::scene {
+namespace fovea::sampling {
 namespace {
 
 // shaders/common/random.glsl, bit for bit.
@@ -139,4 +139,10 @@ void SampleLayoutInput::bind(gpu::ComputePipeline& pipeline, const gpu::Buffer* 
     pipeline.bind(kSampleLayoutBinding, connected ? *connected : *mZero);
 }
 
-}  // namespace fovea::scene
+void checkSampleLayoutSize(uint32_t width, uint32_t height) {
+    if (width > kSampleLayoutMaxCoordinate + 1 || height > kSampleLayoutMaxCoordinate + 1)
+        throw InputError("sample layouts store 16-bit coordinates; the render size is " +
+                         std::to_string(width) + "x" + std::to_string(height));
+}
+
+}  // namespace fovea::sampling

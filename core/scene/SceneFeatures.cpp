@@ -1,6 +1,6 @@
-#include "core/graph/Pass.h"
+#include "core/scene/SceneFeatures.h"
 
-namespace fovea::graph {
+namespace fovea::scene {
 
 std::vector<std::string> sceneFeatureNames(uint32_t mask) {
     static const char* kNames[] = {"geometry", "emissive", "textures", "punctual-lights", "stereo"};
@@ -10,4 +10,4 @@ std::vector<std::string> sceneFeatureNames(uint32_t mask) {
     return out;
 }
 
-}  // namespace fovea::graph
+}  // namespace fovea::scene
