@@ -90,7 +90,7 @@ struct Scene {
     std::vector<std::string> warnings;  // broken entries nothing uses, ignored optional extensions
     Bounds bounds;                      // of mesh.positions
 
-    // graph::SceneFeature bits (core/graph/Pass.h) this scene provides.
+    // SceneFeature bits (core/scene/SceneFeatures.h) this scene provides.
     uint32_t features() const;
     // A camera that frames the bounding box (docs/scenes.md): looks down -Z at the box centre
     // from a distance where the box's bounding sphere fits a 45 degree vertical FOV.

@@ -21,7 +21,7 @@
 #include "core/vk/Resources.h"
 #include "passes/ATrousNH/ATrousNHPass.h"
 #include "tests/graph/ATrousReference.h"
-#include "tests/graph/FeedPass.h"
+#include "tests/passes/FeedPass.h"
 #include "tests/unit/GpuTestFixture.h"
 
 using namespace fovea;
@@ -32,7 +32,7 @@ using fovea::passes::buildATrousSchedule;
 
 namespace {
 
-// Feed (tests/graph/FeedPass.h) declares the denoiser's inputs; the test uploads their content.
+// Feed (tests/passes/FeedPass.h) declares the denoiser's inputs; the test uploads their content.
 const PassRegistry& registry() {
     // Normals in GBuffer's format.
     static PassRegistry r = test::feedRegistry<passes::ATrousNHPass>(

@@ -6,7 +6,7 @@
 #include "core/graph/GraphDesc.h"
 #include "core/graph/PassRegistry.h"
 #include "core/vk/Resources.h"
-#include "tests/graph/FeedPass.h"
+#include "tests/passes/FeedPass.h"
 
 namespace fovea::testbmfr {
 

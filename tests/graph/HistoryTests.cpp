@@ -1,8 +1,8 @@
 // GPU tests of pass-declared history (FieldBuilder::history, ExecuteContext::previous and
 // historyValid, `prev_<field>` bindings): what the pass sees on the first frame, once its ring
 // fills, after a camera cut, a reset, a resize and rebuilds that keep or change the field.
-// The test pass "FrameStamp" writes a stamp per frame and copies the previous frames the graph
-// hands it into plain outputs (tests/shaders/frame_stamp.comp).
+// The test pass "FrameStamp" (tests/passes/FrameStampPass.h) writes a stamp per frame and copies
+// the previous frames the graph hands it into plain outputs.
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -15,6 +15,7 @@
 #include "core/scene/Camera.h"
 #include "core/vk/ComputePipeline.h"
 #include "core/vk/Resources.h"
+#include "tests/passes/FrameStampPass.h"
 #include "tests/unit/GpuTestFixture.h"
 
 using namespace fovea;
@@ -22,45 +23,10 @@ using namespace fovea::graph;
 
 namespace {
 
-// `stamp` keeps `keep` previous frames (1 or 2); `stampOffset` is added to the frame index
-// written as the stamp (a parameter that changes nothing in the resources).
-class FrameStampPass : public Pass {
-public:
-    void params(ParamVisitor& v) override {
-        v.add("keep", mKeep, 2, "previous frames kept", {1, 2});
-        v.add("stampOffset", mOffset, 0.0f, "added to the stamp", {0, 1e6});
-    }
-    void reflect(Reflection& r) const override {
-        const auto rgba32 = vk::Format::eR32G32B32A32Sfloat;
-        r.output("stamp", rgba32).history(uint32_t(mKeep));
-        r.output("seen1", rgba32);
-        r.output("seen2", rgba32);
-    }
-    void compile(CompileContext& ctx) override {
-        std::string shader = FOVEA_TEST_DIR;
-        shader += "/shaders/frame_stamp.comp";
-        mPipeline = ctx.createPipeline(shader, {{"KEEP2", mKeep == 2 ? "1" : "0"}});
-    }
-    void execute(ExecuteContext& ctx) override {
-        const auto& out = ctx.image("stamp");
-        ctx.bindFields(*mPipeline);
-        mPipeline->set("size", glm::ivec2(out.width(), out.height()))
-            .set("stampValue", float(ctx.frame().index) + mOffset)
-            .set("valid1", int(ctx.historyValid("stamp", 1)))
-            .set("valid2", int(ctx.historyValid("stamp", 2)));
-        mPipeline->dispatch(ctx.cmd(), out.width(), out.height());
-    }
-
-private:
-    int mKeep = 2;
-    float mOffset = 0.0f;
-    std::unique_ptr<gpu::ComputePipeline> mPipeline;
-};
-
 const PassRegistry& registry() {
     static const PassRegistry r = [] {
         PassRegistry reg;
-        reg.add({"FrameStamp", "", [] { return std::make_unique<FrameStampPass>(); }});
+        reg.add({"FrameStamp", "", [] { return std::make_unique<test::FrameStampPass>(); }});
         return reg;
     }();
     return r;

@@ -24,7 +24,7 @@
 #include "core/vk/Resources.h"
 #include "passes/RegisterPasses.h"
 #include "passes/TAA/TAAPass.h"
-#include "tests/graph/FeedPass.h"
+#include "tests/passes/FeedPass.h"
 #include "tests/unit/GpuTestFixture.h"
 
 using namespace fovea;

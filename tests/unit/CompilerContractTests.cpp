@@ -6,44 +6,19 @@
 
 #include <string>
 
-#include "core/graph/CompilerStages.h"
-#include "core/graph/GraphDesc.h"
-#include "core/util/Error.h"
-#include "tests/unit/TestPasses.h"
+#include "tests/unit/CompilerTestUtil.h"
 
 using namespace fovea;
 using namespace fovea::graph;
+using namespace fovea::compilertest;
 
 namespace {
-
-const PassRegistry& registry() {
-    static const PassRegistry r = testpasses::testRegistry();
-    return r;
-}
 
 CompileOptions sized(uint32_t w, uint32_t h) {
     CompileOptions o;
     o.width = w;
     o.height = h;
     return o;
-}
-
-CompiledPlan compile(const std::string& text, const CompileOptions& o = sized(64, 64)) {
-    return compileGraphPlan(parseGraphText(text, "test.json"), registry(), o);
-}
-
-std::string compileError(const std::string& text, const CompileOptions& o = sized(64, 64)) {
-    try {
-        compile(text, o);
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "<no error>";
-}
-
-const ResourcePlan& resource(const CompiledPlan& plan, const std::string& pass,
-                             const std::string& field) {
-    return plan.resources[plan.resourceOf.at({plan.findNode(pass), field})];
 }
 
 const char* kTemporalGraph = R"({ "version": 1, "passes": [
@@ -56,12 +31,12 @@ constexpr uint64_t kRgba32f64 = 64ull * 64 * 16, kR32f64 = 64ull * 64 * 4;
 
 TEST(CompilerHistory, DeclaredHistoryMakesARingWithoutAnyEdge) {
     CompiledPlan plan = compile(kTemporalGraph);
-    const ResourcePlan& out = resource(plan, "t", "out");
+    const ResourcePlan& out = resource(plan, "t.out");
     EXPECT_EQ(out.lifetime, Lifetime::History);
     EXPECT_EQ(out.declaredHistory, 2u);
     EXPECT_EQ(out.ringSize, 3u);
     EXPECT_EQ(out.aliasGroup, -1);  // never shares memory: its slots outlive the frame
-    const ResourcePlan& state = resource(plan, "t", "state");
+    const ResourcePlan& state = resource(plan, "t.state");
     EXPECT_EQ(state.lifetime, Lifetime::History);
     EXPECT_EQ(state.ringSize, 2u);
     // Memory figures: every slot counts as persistent, the previous-frame slots as history.
@@ -77,7 +52,7 @@ TEST(CompilerHistory, DelayEdgeOnADeclaredHistoryWidensTheRing) {
         { "name": "f", "type": "Filter" } ],
       "edges": [ { "from": "src.color", "to": "t.in" },
                  { "from": "t.out", "to": "f.in", "delay": 4 } ], "outputs": [ "f.out" ] })");
-    const ResourcePlan& out = resource(plan, "t", "out");
+    const ResourcePlan& out = resource(plan, "t.out");
     EXPECT_EQ(out.ringSize, 5u);
     EXPECT_EQ(out.declaredHistory, 2u);
 }
@@ -125,9 +100,9 @@ TEST(CompilerBufferSize, BuffersFollowTheRenderSize) {
       "outputs": [ "b.list", "b.blocks" ] })";
     for (auto [w, h] : {std::pair{64u, 64u}, std::pair{100u, 33u}, std::pair{1u, 1u}}) {
         CompiledPlan plan = compile(graph, sized(w, h));
-        EXPECT_EQ(resource(plan, "b", "list").bufferBytes, 16 + 8ull * w * h) << w << "x" << h;
+        EXPECT_EQ(resource(plan, "b.list").bufferBytes, 16 + 8ull * w * h) << w << "x" << h;
         const uint64_t blocks = ((w + 31) / 32 + 1) * ((h + 31) / 32 + 1);
-        EXPECT_EQ(resource(plan, "b", "blocks").bufferBytes, 384 * blocks) << w << "x" << h;
+        EXPECT_EQ(resource(plan, "b.blocks").bufferBytes, 384 * blocks) << w << "x" << h;
     }
     BufferSize fixed{.header = 4096};
     EXPECT_EQ(fixed.bytes(640, 480), 4096u);

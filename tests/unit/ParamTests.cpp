@@ -9,7 +9,7 @@
 
 #include "core/graph/Param.h"
 #include "core/util/Error.h"
-#include "tests/unit/TestPasses.h"
+#include "tests/passes/TestPasses.h"
 
 using namespace fovea;
 using namespace fovea::graph;

@@ -1,8 +1,8 @@
-// GPU regression tests for fixes in the foundation: Tonemap's rgba8 output reaches a PNG
-// byte-exact (no second sRGB encoding), RenderGraph submits frames under the context's queue
-// lock, a build() that fails after the plan compiled leaves an unbuilt graph (runFrame throws a
-// clear RuntimeError) that a later build() repairs, and the documented ImageSource/Combine
-// numerics (seed formula, alpha of frame-index, alpha combined). Tiny images (lavapipe).
+// GPU tests of the utility passes and of RenderGraph's build/submit robustness: Tonemap's rgba8
+// output reaches a PNG byte-exact (no second sRGB encoding), RenderGraph submits frames under the
+// context's queue lock, a build() that fails after the plan compiled leaves an unbuilt graph
+// (runFrame throws a clear RuntimeError) that a later build() repairs, and the documented
+// ImageSource/Combine numerics (seed formula, alpha of frame-index, alpha combined). Tiny images.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -42,7 +42,7 @@ CompileOptions sized(uint32_t width, uint32_t height) {
     return o;
 }
 
-class UtilityFixGpu : public GpuTest {
+class UtilityPassGpu : public GpuTest {
 protected:
     static void SetUpTestSuite() { registerBuiltinPasses(); }
 
@@ -66,7 +66,7 @@ std::string sourceGraph(const std::string& params) {
 
 // --- 1. PNG of an rgba8 output -------------------------------------------------------------
 
-TEST_F(UtilityFixGpu, TonemapOutputReachesPngByteExact) {
+TEST_F(UtilityPassGpu, TonemapOutputReachesPngByteExact) {
     auto g = graphOf(R"({ "version": 1,
       "passes": [ { "name": "gradient", "type": "ImageSource",
                     "params": { "pattern": "gradient", "value": [4, 2, 1] } },
@@ -100,7 +100,7 @@ TEST_F(UtilityFixGpu, TonemapOutputReachesPngByteExact) {
 
 // --- 5. queue lock ------------------------------------------------------------------------------
 
-TEST_F(UtilityFixGpu, FrameSubmitWaitsForTheContextQueueLock) {
+TEST_F(UtilityPassGpu, FrameSubmitWaitsForTheContextQueueLock) {
     auto g = graphOf(sourceGraph(R"({ "pattern": "constant", "value": [3, 3, 3] })"));
     g->runFrame();  // warm
     std::atomic<bool> lockHeld{false};
@@ -164,7 +164,7 @@ const PassRegistry& failingRegistry() {
     return registry;
 }
 
-TEST_F(UtilityFixGpu, RunFrameBeforeAnyBuildThrows) {
+TEST_F(UtilityPassGpu, RunFrameBeforeAnyBuildThrows) {
     RenderGraph g(ctx(), passRegistry());
     EXPECT_FALSE(g.built());
     try {
@@ -175,7 +175,7 @@ TEST_F(UtilityFixGpu, RunFrameBeforeAnyBuildThrows) {
     }
 }
 
-TEST_F(UtilityFixGpu, FailedBuildLeavesAnUnbuiltGraphThatRebuilds) {
+TEST_F(UtilityPassGpu, FailedBuildLeavesAnUnbuiltGraphThatRebuilds) {
     const std::string good = sourceGraph(R"({ "pattern": "constant", "value": [2, 2, 2] })");
     const std::string failing = R"({ "version": 1,
       "passes": [ { "name": "src", "type": "ImageSource" }, { "name": "bad", "type": "Failing" } ],
@@ -213,7 +213,7 @@ TEST_F(UtilityFixGpu, FailedBuildLeavesAnUnbuiltGraphThatRebuilds) {
 
 // --- 4. documented numerics -------------------------------------------------------------------
 
-TEST_F(UtilityFixGpu, ImageSourceSeedIsSeedPlus7919TimesRunSeed) {
+TEST_F(UtilityPassGpu, ImageSourceSeedIsSeedPlus7919TimesRunSeed) {
     auto noise = [&](uint32_t seedParam, uint64_t runSeed) {
         auto g = graphOf(
             sourceGraph(R"({ "pattern": "noise", "seed": )" + std::to_string(seedParam) + " }"));
@@ -226,7 +226,7 @@ TEST_F(UtilityFixGpu, ImageSourceSeedIsSeedPlus7919TimesRunSeed) {
     EXPECT_NE(documented, noise(5 + 3, 0)) << "the run seed is not simply added";
 }
 
-TEST_F(UtilityFixGpu, FrameIndexAlphaAndCombineAlphaAreAsDocumented) {
+TEST_F(UtilityPassGpu, FrameIndexAlphaAndCombineAlphaAreAsDocumented) {
     auto g = graphOf(R"({ "version": 1,
       "passes": [ { "name": "src", "type": "ImageSource", "params": { "pattern": "frame-index" } },
                   { "name": "k", "type": "ImageSource",

@@ -1,11 +1,7 @@
-// CPU regression tests for fixes in the foundation's utility passes and image output:
-//  - PNG writing: 8-bit UNORM (display-encoded) images are written as-is, not sRGB-encoded again;
-//  - Blit/Tonemap/Combine reject integer formats their shaders cannot read or write, at compile,
-//    naming pass and field/parameter;
-//  - bypass pairs of different size/format are rejected by the compile stages (so `fovea
-//    validate` agrees with `fovea run`);
-//  - the parameter documentation of ImageSource/Combine says what the code does, and the pass
-//    docs (docs/passes/*.md) carry the same strings.
+// Compile-time checks of the utility passes (Blit, Tonemap, Combine, ImageSource): integer
+// formats their shaders cannot read or write are rejected at compile, naming pass and field or
+// parameter; bypass pairs of different size or format are rejected by the compile stages (so
+// `fovea validate` agrees with `fovea run`); parameter docs say what the code does. CPU only.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -35,74 +31,6 @@ using namespace fovea;
 using namespace fovea::graph;
 
 namespace {
-
-// --- PNG ------------------------------------------------------------------------------------
-
-fs::path tempFile(const std::string& name) {
-    return fs::temp_directory_path() / ("fovea_utilfix_" + std::to_string(::getpid()) + "_" + name);
-}
-
-std::vector<uint8_t> readPngBytes(const fs::path& path, int& width, int& height) {
-    OIIO::ImageSpec config;  // the bytes as stored: no premultiplication by alpha
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    auto in = OIIO::ImageInput::open(path.string(), &config);
-    if (!in) return {};
-    const OIIO::ImageSpec& spec = in->spec();
-    width = spec.width;
-    height = spec.height;
-    EXPECT_EQ(spec.nchannels, 4);
-    std::vector<uint8_t> bytes(size_t(spec.width) * spec.height * 4);
-    EXPECT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, bytes.data()));
-    return bytes;
-}
-
-// Every byte value 0..255 on every channel, as an rgba8 image reads back (k / 255).
-image::ImageRGBA allByteValues(std::vector<uint8_t>& bytes) {
-    image::ImageRGBA img{16, 16, {}};
-    for (uint32_t p = 0; p < 256; ++p)
-        for (uint32_t c = 0; c < 4; ++c) bytes.push_back(uint8_t((p + 67 * c) % 256));
-    for (uint8_t b : bytes) img.pixels.push_back(float(b) / 255.0f);
-    return img;
-}
-
-TEST(UtilityFixPng, Unorm8ImageIsWrittenAsIs) {
-    std::vector<uint8_t> expected;
-    image::ImageRGBA img = allByteValues(expected);
-    const fs::path path = tempFile("asis.png");
-    image::writePng(path, img, image::PngEncoding::AsIs);
-    int w = 0, h = 0;
-    std::vector<uint8_t> got = readPngBytes(path, w, h);
-    fs::remove(path);
-    ASSERT_EQ(w, 16);
-    ASSERT_EQ(h, 16);
-    ASSERT_EQ(got.size(), expected.size());
-    size_t differ = 0;
-    for (size_t i = 0; i < got.size(); ++i) differ += got[i] != expected[i];
-    EXPECT_EQ(differ, 0u) << "bytes of a display-encoded image changed on the way to PNG";
-}
-
-TEST(UtilityFixPng, LinearImageIsEncodedOnceAndAlphaStaysLinear) {
-    // Linear 0.5 -> sRGB 0.7354 -> 188; alpha 0.5 -> 128 (never encoded).
-    image::ImageRGBA img{1, 1, {0.5f, 0.0f, 1.0f, 0.5f}};
-    const fs::path path = tempFile("srgb.png");
-    image::writePng(path, img);  // default: linear input
-    int w = 0, h = 0;
-    std::vector<uint8_t> got = readPngBytes(path, w, h);
-    fs::remove(path);
-    ASSERT_EQ(got.size(), 4u);
-    EXPECT_EQ(got[0], 188);
-    EXPECT_EQ(got[1], 0);
-    EXPECT_EQ(got[2], 255);
-    EXPECT_EQ(got[3], 128);
-}
-
-TEST(UtilityFixPng, Unorm8FormatsAreTheDisplayEncodedOnes) {
-    EXPECT_TRUE(gpu::formatIsUnorm8(vk::Format::eR8G8B8A8Unorm));
-    EXPECT_TRUE(gpu::formatIsUnorm8(vk::Format::eR8Unorm));
-    EXPECT_FALSE(gpu::formatIsUnorm8(vk::Format::eR32G32B32A32Sfloat));
-    EXPECT_FALSE(gpu::formatIsUnorm8(vk::Format::eR16G16B16A16Sfloat));
-    EXPECT_FALSE(gpu::formatIsUnorm8(vk::Format::eR32Uint));
-}
 
 // --- integer formats ------------------------------------------------------------------------
 
@@ -173,20 +101,20 @@ void expectIntegerRejected(const std::string& type, const std::string& field,
     EXPECT_NE(error.find("r32ui"), std::string::npos) << error;
 }
 
-TEST(UtilityFixFormats, TonemapRejectsAnIntegerInput) {
+TEST(UtilityPassFormats, TonemapRejectsAnIntegerInput) {
     expectIntegerRejected("Tonemap", "color", "ldr");
 }
 
-TEST(UtilityFixFormats, CombineRejectsIntegerInputs) {
+TEST(UtilityPassFormats, CombineRejectsIntegerInputs) {
     expectIntegerRejected("Combine", "a", "result");
     expectIntegerRejected("Combine", "b", "result");
 }
 
-TEST(UtilityFixFormats, BlitRejectsAnIntegerInput) {
+TEST(UtilityPassFormats, BlitRejectsAnIntegerInput) {
     expectIntegerRejected("Blit", "color", "result");
 }
 
-TEST(UtilityFixFormats, BlitOffersNoIntegerOutputFormat) {
+TEST(UtilityPassFormats, BlitOffersNoIntegerOutputFormat) {
     for (const std::string format : {"r32ui", "rg32ui", "rgba32ui"}) {
         SCOPED_TRACE(format);
         std::string error = compileError(R"({ "version": 1,
@@ -214,7 +142,7 @@ TEST(UtilityFixFormats, BlitOffersNoIntegerOutputFormat) {
     EXPECT_TRUE(found);
 }
 
-TEST(UtilityFixFormats, FloatAndUnormInputsStillCompile) {
+TEST(UtilityPassFormats, FloatAndUnormInputsStillCompile) {
     // rgba8 (unorm) into Combine and Tonemap; rgba16f through Blit.
     EXPECT_EQ(compileError(R"({ "version": 1,
       "passes": [ { "name": "f", "type": "ImageSource" },
@@ -232,7 +160,7 @@ TEST(UtilityFixFormats, FloatAndUnormInputsStillCompile) {
 
 const fs::path kBadCompile = fs::path(FOVEA_TEST_DIR) / "graph" / "bad" / "compile";
 
-TEST(UtilityFixBypass, SizeOrFormatMismatchFailsInTheCompileStages) {
+TEST(UtilityPassBypass, SizeOrFormatMismatchFailsInTheCompileStages) {
     registerBuiltinPasses();
     const fs::path file = kBadCompile / "bypass_size_mismatch.json";
     try {
@@ -259,7 +187,7 @@ TEST(UtilityFixBypass, SizeOrFormatMismatchFailsInTheCompileStages) {
               "<no error>");
 }
 
-TEST(UtilityFixBypass, ACulledBypassPassIsNotChecked) {
+TEST(UtilityPassBypass, ACulledBypassPassIsNotChecked) {
     registerBuiltinPasses();
     // The mismatching Blit is disabled: it never runs, so it cannot fail a copy.
     EXPECT_EQ(compileError(R"({ "version": 1, "passes": [ { "name": "src", "type": "ImageSource" },
@@ -279,7 +207,7 @@ std::string paramDoc(Pass& pass, const std::string& name) {
     return "";
 }
 
-TEST(UtilityFixDocs, ImageSourceSeedDocStatesTheFormula) {
+TEST(UtilityPassDocs, ImageSourceSeedDocStatesTheFormula) {
     passes::ImageSourcePass source;
     const std::string seed = paramDoc(source, "seed");
     EXPECT_EQ(seed.find("added to"), std::string::npos) << seed;
@@ -289,7 +217,7 @@ TEST(UtilityFixDocs, ImageSourceSeedDocStatesTheFormula) {
     EXPECT_NE(pattern.find("alpha is the frame number"), std::string::npos) << pattern;
 }
 
-TEST(UtilityFixDocs, CombineDocSaysAlphaIsCombined) {
+TEST(UtilityPassDocs, CombineDocSaysAlphaIsCombined) {
     passes::CombinePass combine;
     EXPECT_NE(paramDoc(combine, "weightA").find("alpha included"), std::string::npos);
     EXPECT_NE(paramDoc(combine, "weightB").find("alpha included"), std::string::npos);
