@@ -78,9 +78,11 @@ TEST(CliRun, DemoWritesReportAndImages) {
 
     const json& memory = report.at("memory");
     for (const char* key :
-         {"transient_bytes", "transient_bytes_without_aliasing", "persistent_bytes"}) {
+         {"transient_bytes", "transient_bytes_without_aliasing", "persistent_bytes",
+          "history_bytes"}) {
         ASSERT_TRUE(memory.contains(key) && memory[key].is_number_unsigned()) << key << memory;
     }
+    EXPECT_LE(memory["history_bytes"].get<uint64_t>(), memory["persistent_bytes"].get<uint64_t>());
     EXPECT_LE(memory["transient_bytes"].get<uint64_t>(),
               memory["transient_bytes_without_aliasing"].get<uint64_t>());
     // At least the two marked outputs (outputs are persistent): 32*32*16 + 32*32*4 bytes.

@@ -156,21 +156,6 @@ TEST(CompilerAlias, BuffersAreResourcesButNotAliased) {
 // --- history rings
 // --------------------------------------------------------------------------------
 
-namespace {
-
-const char* kSelfLoop = R"({ "version": 1,
-  "passes": [ { "name": "src", "type": "Src" }, { "name": "j", "type": "Join" } ],
-  "edges": [ { "from": "src.color", "to": "j.a" }, { "from": "j.out", "to": "j.b", "delay": %s } ],
-  "outputs": [ "j.out" ] })";
-
-std::string selfLoop(const char* delay) {
-    std::string text = kSelfLoop;
-    text.replace(text.find("%s"), 2, delay);
-    return text;
-}
-
-}  // namespace
-
 TEST(CompilerHistory, SelfLoopWithDelayOne) {
     CompiledPlan plan = compile(selfLoop("1"));
     EXPECT_EQ(orderNames(plan), (Names{"src", "j"}));

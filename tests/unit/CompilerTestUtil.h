@@ -140,4 +140,16 @@ using Names = std::vector<std::string>;
 using Reasons = std::map<std::string, std::string>;
 
 
+// src -> j, j.out -> j.b through a delayed edge of `delay` frames.
+inline constexpr const char* kSelfLoop = R"({ "version": 1,
+  "passes": [ { "name": "src", "type": "Src" }, { "name": "j", "type": "Join" } ],
+  "edges": [ { "from": "src.color", "to": "j.a" }, { "from": "j.out", "to": "j.b", "delay": %s } ],
+  "outputs": [ "j.out" ] })";
+
+inline std::string selfLoop(const char* delay) {
+    std::string text = kSelfLoop;
+    text.replace(text.find("%s"), 2, delay);
+    return text;
+}
+
 }  // namespace fovea::compilertest
