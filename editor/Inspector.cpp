@@ -269,7 +269,11 @@ uint32_t Inspector::run() {
         start = Clock::now();
         ImGui_ImplVulkan_NewFrame();
         ImGui_ImplGlfw_NewFrame();
-        if (mOptions.ignoreMouse) ImGui::GetIO().MousePos = ImVec2(-FLT_MAX, -FLT_MAX);
+        if (mOptions.ignoreMouse) {
+            ImGuiIO& io = ImGui::GetIO();
+            io.MousePos = ImVec2(-FLT_MAX, -FLT_MAX);
+            for (bool& down : io.MouseDown) down = false;
+        }
         ImGui::NewFrame();
         drawUi();
         ImGui::Render();

@@ -100,7 +100,7 @@ struct InspectOptions {
     int frames = 0;  // 0 = until the window is closed
     int64_t seed = -1;
     std::string screenshot, script, device, window = "960x600";
-    bool validation = false, quiet = false;
+    bool validation = false, quiet = false, overwrite = false;
 };
 void addInspectCommand(CLI::App& app, InspectOptions& options);
 int inspectCommand(const InspectOptions& options);

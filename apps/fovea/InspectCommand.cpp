@@ -1,6 +1,7 @@
 // `fovea inspect`: the graph inspector (editor/, docs/inspector.md). This file owns what editor/
 // must not know about: command-line options, the scene and its camera path, --set overrides.
 #include <chrono>
+#include <filesystem>
 #include <iostream>
 #include <numeric>
 #include <optional>
@@ -35,6 +36,7 @@ void addInspectCommand(CLI::App& app, InspectOptions& o) {
     cmd->add_option("--device", o.device, "GPU index or name substring (default: best available)");
     cmd->add_flag("--validation", o.validation, "enable the Vulkan validation layer");
     cmd->add_flag("--no-aliasing", o.graph.noAliasing, "give every transient image its own memory");
+    cmd->add_flag("--overwrite", o.overwrite, "allow screenshots to replace existing files");
     cmd->add_flag("--quiet", o.quiet, "no messages on stderr but errors");
     addSceneOptions(*cmd, o.scene);
 }
@@ -125,17 +127,29 @@ int inspectCommand(const InspectOptions& o) {
     options.screenshot = o.screenshot;
     options.quiet = o.quiet;
     if (!o.script.empty()) options.script = editor::parseInspectorScript(o.script);
+    // Screenshots never replace a file silently.
+    std::vector<std::pair<std::string, std::string>> shots;  // path, what asked for it
+    if (!o.screenshot.empty()) shots.emplace_back(o.screenshot, "--screenshot");
+    for (const auto& cmd : options.script)
+        if (cmd.verb == "screenshot") shots.emplace_back(cmd.args[0], cmd.where);
+    for (const auto& [path, source] : shots)
+        for (const std::string& file : {path, path + ".json"})
+            if (std::filesystem::exists(file) && !o.overwrite)
+                throw InputError(source, "",
+                                 "'" + file + "' exists; pass --overwrite to replace it");
     options.ignoreMouse = !o.script.empty() || !o.screenshot.empty();
+    // Destruction runs in reverse: the scene's GPU buffers and the window go before the device,
+    // the device before glfwTerminate. Both are created only after every input was checked.
+    std::optional<editor::WindowSystem> windows;
+    std::optional<gpu::Context> device;
     RunScene scene(o.scene, desc);
-
-    // Declaration order is destruction order reversed: window system, device, window, UI.
-    editor::WindowSystem windows;  // throws RuntimeError (exit 1) without a display
+    windows.emplace();  // throws RuntimeError (exit 1) without a display
     gpu::ContextOptions contextOptions;
     contextOptions.device = o.device;
     contextOptions.validation = o.validation;
-    contextOptions.instanceExtensions = windows.requiredInstanceExtensions();
+    contextOptions.instanceExtensions = windows->requiredInstanceExtensions();
     contextOptions.swapchain = true;
-    gpu::Context ctx(contextOptions);
+    gpu::Context& ctx = device.emplace(contextOptions);
     if (!o.quiet)
         std::cerr << "fovea: device " << ctx.deviceName() << " (" << ctx.driverName() << ")\n";
     uploadScene(ctx, scene, o.quiet);
