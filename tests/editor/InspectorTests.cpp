@@ -133,6 +133,49 @@ TEST(Inspector, ScriptedRunUnderXvfb) {
     EXPECT_EQ(checked, 5u) << "every node of the small graph is visible in an 800x600 window";
 }
 
+// The colour of the previewed image at (u, v) in [0,1]^2 of the image, 0..255.
+std::array<int, 3> previewColour(const Shot& s, float u, float v) {
+    const auto r = s.info["preview"]["image"];
+    const int x = int(r[0].get<float>() + u * r[2].get<float>());
+    const int y = int(r[1].get<float>() + v * r[3].get<float>());
+    const float* p = &s.pixels.pixels[(size_t(y) * s.pixels.width + size_t(x)) * 4];
+    return {int(std::lround(p[0] * 255)), int(std::lround(p[1] * 255)),
+            int(std::lround(p[2] * 255))};
+}
+
+TEST(Inspector, ScriptedGazeMovesTheFovea) {
+    const std::string xvfb = xvfbPrefix();
+    ASSERT_FALSE(xvfb.empty()) << "xvfb-run not found: install xvfb (scripts/install-deps.sh)";
+    TempDir dir;
+    writeText(dir / "script.txt",
+              "0 falsecolour on\n"
+              "1 screenshot " +
+                  (dir / "a.png").string() +
+                  "\n"
+                  "2 gaze 0.2 0.2\n"
+                  "2 screenshot " +
+                  (dir / "b.png").string() +
+                  "\n"
+                  "3 screenshot " +
+                  (dir / "c.png").string() + "\n");
+    const Result r = shellRun(
+        xvfb, {"inspect", (kRepo / "graphs" / "tests" / "inspector_gaze.json").string(), "--window",
+               "640x480", "--frames", "4", "--script", (dir / "script.txt").string()});
+    ASSERT_EQ(r.code, 0) << r.describe();
+    const Shot a = readShot(dir / "a.png"), b = readShot(dir / "b.png"),
+               c = readShot(dir / "c.png");
+    // The fovea (the false-colour ramp's top: every pixel sampled) follows the gaze: at the
+    // centre before, at (0.2, 0.2) after; the centre is no longer fovea.
+    const auto foveaBefore = previewColour(a, 0.5f, 0.5f);
+    EXPECT_GT(foveaBefore[0], 150) << "the gaze point should be in the fovea (red end of the ramp)";
+    EXPECT_EQ(previewColour(c, 0.2f, 0.2f), foveaBefore);
+    EXPECT_NE(previewColour(c, 0.5f, 0.5f), foveaBefore);
+    // FoveationMask is cached while the gaze stays, and runs again in the frame it moves.
+    EXPECT_EQ(a.info["nodes"][0]["status"], "cached");
+    EXPECT_EQ(b.info["nodes"][0]["status"], "executed");
+    EXPECT_EQ(c.info["nodes"][0]["status"], "cached");
+}
+
 TEST(Inspector, NoDisplayExitsOneWithMessage) {
     const Result r = shellRun("env -u DISPLAY -u WAYLAND_DISPLAY",
                               {"inspect", kStatuses.string(), "--frames", "1"});
