@@ -14,18 +14,18 @@ namespace fovea::editor {
 
 namespace {
 
-std::string gLastGlfwError;  // written by the GLFW error callback (GLFW has no user pointer here)
-
-void onGlfwError(int, const char* description) {
-    gLastGlfwError = description ? description : "unknown GLFW error";
+// The description of GLFW's last error (glfwGetError keeps it per thread: no callback, no global).
+std::string glfwError() {
+    const char* description = nullptr;
+    glfwGetError(&description);
+    return description ? description : "unknown GLFW error";
 }
 
 }  // namespace
 
 WindowSystem::WindowSystem() {
-    glfwSetErrorCallback(&onGlfwError);
     if (!glfwInit())
-        throw RuntimeError("cannot open a window: " + gLastGlfwError +
+        throw RuntimeError("cannot open a window: " + glfwError() +
                            " (fovea inspect needs a display; without one run it under "
                            "xvfb-run -a, or use fovea run)");
     if (!glfwVulkanSupported()) {
@@ -41,7 +41,7 @@ WindowSystem::~WindowSystem() {
 std::vector<std::string> WindowSystem::requiredInstanceExtensions() const {
     uint32_t count = 0;
     const char** names = glfwGetRequiredInstanceExtensions(&count);
-    if (!names) throw RuntimeError("cannot open a window: " + gLastGlfwError);
+    if (!names) throw RuntimeError("cannot open a window: " + glfwError());
     return std::vector<std::string>(names, names + count);
 }
 
@@ -51,10 +51,10 @@ VulkanWindow::VulkanWindow(gpu::Context& ctx, uint32_t width, uint32_t height,
     glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
     glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);  // screenshots of a known size
     mWindow = glfwCreateWindow(int(width), int(height), title.c_str(), nullptr, nullptr);
-    if (!mWindow) throw RuntimeError("cannot create a window: " + gLastGlfwError);
+    if (!mWindow) throw RuntimeError("cannot create a window: " + glfwError());
     VkSurfaceKHR surface = VK_NULL_HANDLE;
     if (glfwCreateWindowSurface(*ctx.instance(), mWindow, nullptr, &surface) != VK_SUCCESS)
-        throw RuntimeError("cannot create a Vulkan surface for the window: " + gLastGlfwError);
+        throw RuntimeError("cannot create a Vulkan surface for the window: " + glfwError());
     mSurface = vk::raii::SurfaceKHR(ctx.instance(), surface);
     if (!ctx.physicalDevice().getSurfaceSupportKHR(ctx.queueFamily(), *mSurface))
         throw RuntimeError("the queue fovea computes on cannot present on '" + ctx.deviceName() +
