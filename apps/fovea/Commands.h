@@ -96,6 +96,18 @@ struct CompareOptions {
 void addCompareCommand(CLI::App& app, CompareOptions& options);
 int compareCommand(const CompareOptions& options);
 
+// `fovea inspect`: the ImGui graph inspector in a window (docs/inspector.md).
+struct InspectOptions {
+    GraphOptions graph;
+    SceneOptions scene;
+    int frames = 0;  // 0 = until the window is closed
+    int64_t seed = -1;
+    std::string screenshot, script, device, window = "960x600";
+    bool validation = false, quiet = false, overwrite = false;
+};
+void addInspectCommand(CLI::App& app, InspectOptions& options);
+int inspectCommand(const InspectOptions& options);
+
 // Shared by run/validate/bench: parse the graph file and apply --set overrides (each checked
 // against the pass's declared parameters, errors naming the flag).
 graph::GraphDesc loadGraph(const GraphOptions& options);

@@ -40,12 +40,14 @@ int main(int argc, char** argv) {
     ReferenceOptions reference;
     CompareOptions compare;
     BenchOptions bench;
+    InspectOptions inspect;
     addRunCommand(app, run);
     addReferenceCommand(app, reference);
     addValidateCommand(app, validate);
     addPassesCommand(app, passes);
     addCompareCommand(app, compare);
     addBenchCommand(app, bench);
+    addInspectCommand(app, inspect);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -70,6 +72,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("passes")) return passesCommand(passes);
         if (app.got_subcommand("compare")) return compareCommand(compare);
         if (app.got_subcommand("bench")) return benchCommand(bench);
+        if (app.got_subcommand("inspect")) return inspectCommand(inspect);
     } catch (const fovea::InputError& e) {
         std::cerr << "error: " << e.what() << "\n";
         return kExitInput;

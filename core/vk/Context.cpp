@@ -209,6 +209,12 @@ Context::Context(const ContextOptions& options)
     auto instanceExtensions = mVkContext.enumerateInstanceExtensionProperties();
     mDebugUtils = hasExtension(instanceExtensions, VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     if (mDebugUtils) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    for (const std::string& name : options.instanceExtensions) {
+        if (!hasExtension(instanceExtensions, name.c_str()))
+            throw RuntimeError("the Vulkan instance lacks extension " + name +
+                               " (needed to present to a window)");
+        extensions.push_back(name.c_str());
+    }
     if (mValidation) {
         auto available = mVkContext.enumerateInstanceLayerProperties();
         bool found =
@@ -339,6 +345,13 @@ Context::Context(const ContextOptions& options)
     vk::DeviceQueueCreateInfo queueInfo{
         .queueFamilyIndex = mQueueFamily, .queueCount = 1, .pQueuePriorities = &priority};
     std::vector<const char*> deviceExtensions{VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    if (options.swapchain) {
+        if (!hasExtension(mPhysicalDevice.enumerateDeviceExtensionProperties(),
+                          VK_KHR_SWAPCHAIN_EXTENSION_NAME))
+            throw RuntimeError("Vulkan device '" + deviceName() +
+                               "' cannot present to a window (no VK_KHR_swapchain)");
+        deviceExtensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+    }
     auto& deviceInfo = chain.get<vk::DeviceCreateInfo>();
     deviceInfo.queueCreateInfoCount = 1;
     deviceInfo.pQueueCreateInfos = &queueInfo;

@@ -23,6 +23,10 @@ struct ContextOptions {
     bool validation = false;
     // Forces validation (with synchronization validation) on; env FOVEA_SYNC_VALIDATION=1 too.
     bool syncValidation = false;
+    // Presentation (the inspector's window): extra instance extensions (the surface extensions
+    // the window system asks for) and VK_KHR_swapchain on the device. Empty/false for headless.
+    std::vector<std::string> instanceExtensions;
+    bool swapchain = false;
 };
 
 // Optional device features that were available and are enabled (shaders may rely on these only

@@ -1,0 +1,102 @@
+// The inspector: runs a graph every frame in a window and shows the graph (GraphLayout), a
+// preview of any field, per-pass GPU times and the selected pass's parameters (docs/inspector.md).
+#pragma once
+#include <array>
+#include <cstdint>
+#include <deque>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "editor/GraphLayout.h"
+#include "editor/GraphSession.h"
+#include "editor/InspectorScript.h"
+#include "editor/PreviewImage.h"
+#include "editor/VulkanWindow.h"
+
+namespace fovea::editor {
+
+struct InspectorOptions {
+    std::string graphFile;   // watched: a change on disk reloads it
+    uint32_t frames = 0;     // 0 = until the window is closed
+    std::string screenshot;  // after the last frame: PNG of the window + <file>.json
+    std::vector<ScriptCommand> script;
+    bool quiet = false;
+    // Scripted and screenshot runs ignore the real mouse: the pointer of a virtual display sits
+    // somewhere over the window and would move the gaze and open tooltips at random.
+    bool ignoreMouse = false;
+};
+
+// Node colour by status in the last frame (docs/inspector.md), RGB 0..255.
+std::array<uint8_t, 3> statusColour(graph::PassStatus status);
+
+// Per-frame CPU wall times in ms (docs/benchmarks.md, "Inspector overhead").
+struct InspectorTimes {
+    double graph = 0;    // session.runFrame: record + submit + wait for the graph's frame
+    double preview = 0;  // read the previewed field back + convert it
+    double ui = 0;       // ImGui NewFrame .. Render
+    double present = 0;  // record the UI, submit, present, wait
+};
+
+class Inspector {
+public:
+    Inspector(GraphSession& session, VulkanWindow& window, InspectorOptions options);
+    ~Inspector();
+    Inspector(const Inspector&) = delete;
+    Inspector& operator=(const Inspector&) = delete;
+
+    // Runs until the frame count is reached or the window is closed. Returns the number of
+    // frames drawn.
+    uint32_t run();
+    const std::vector<InspectorTimes>& times() const { return mTimes; }
+
+    // What the UI and the script do (public for the script and the panels).
+    void selectPass(const std::string& pass);
+    void previewField(const std::string& resource);  // "pass.field"; errors go to the window
+    void setParam(const std::string& pass, const std::string& param, const nlohmann::json& value);
+    void setParamText(const std::string& passParam, const std::string& text);
+    void applyDesc(const graph::GraphDesc& desc, const std::string& what);
+    void reload(const std::string& path);
+
+private:
+    void runScript(uint32_t frame, std::vector<std::string>& screenshots);
+    void runCommand(const ScriptCommand& cmd, std::vector<std::string>& screenshots);
+    void pollGraphFile();
+    void drawUi();
+    void drawGraphView();
+    void drawPreviewPanel();
+    void drawSidePanel();
+    void drawTimings();
+    void updatePreview();
+    void writeScreenshot(const std::string& path, const image::ImageRGBA& pixels) const;
+    void relayout();
+    void setError(const std::string& message);
+
+    GraphSession& mSession;
+    VulkanWindow& mWindow;
+    InspectorOptions mOptions;
+    GraphLayout mLayout;
+    std::string mSelected;  // pass name
+    std::string mPreview;   // "pass.field"
+    PreviewSettings mSettings;
+    std::optional<Gaze> mGaze;
+    bool mPaused = false, mStep = false;
+    std::string mError;
+    std::optional<std::filesystem::file_time_type> mGraphTime;
+    uint32_t mFrame = 0;
+    graph::FrameTiming mLastTiming;
+    std::deque<float> mFrameMsHistory;
+    // The preview: the field's content (CPU copy), the bytes put under the UI and the placement.
+    image::ImageRGBA mPreviewImage;
+    bool mPreviewDisplayEncoded = false;
+    PreviewBlit mBlit;
+    PreviewFit mFit;
+    float mPreviewRect[4] = {0, 0, 0, 0};  // x, y, w, h in window pixels (this frame's layout)
+    std::vector<std::array<float, 4>> mNodeRects;  // per plan node: header x, y, w, h (window)
+    std::array<float, 4> mCanvasClip{0, 0, 0, 0};  // visible part of the graph view (x0 y0 x1 y1)
+    bool mGazeFollowsMouse = true;
+    std::vector<InspectorTimes> mTimes;
+};
+
+}  // namespace fovea::editor

@@ -1,0 +1,288 @@
+// The inspector's three windows: the graph (ImDrawList, GraphLayout), the preview rectangle and
+// its controls, and the side panel (controls, errors, timings, parameters of the selected pass).
+#include <imgui.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <fstream>
+
+#include "core/graph/PassRegistry.h"
+#include "core/image/ImageIO.h"
+#include "core/vk/Context.h"
+#include "editor/Inspector.h"
+#include "editor/ParamWidgets.h"
+
+namespace fovea::editor {
+
+std::array<uint8_t, 3> statusColour(graph::PassStatus status) {
+    switch (status) {
+        case graph::PassStatus::Executed:
+            return {64, 150, 72};
+        case graph::PassStatus::Cached:
+            return {56, 104, 190};
+        case graph::PassStatus::Culled:
+            return {96, 96, 96};
+        case graph::PassStatus::Bypassed:
+            return {196, 160, 40};
+        case graph::PassStatus::Skipped:
+            return {150, 72, 170};
+    }
+    return {0, 0, 0};
+}
+
+namespace {
+
+ImU32 colourOf(const std::array<uint8_t, 3>& c, uint8_t alpha = 255) {
+    return IM_COL32(c[0], c[1], c[2], alpha);
+}
+
+constexpr ImU32 kEdgeColour = IM_COL32(200, 200, 210, 200);
+constexpr ImU32 kDelayEdgeColour = IM_COL32(255, 140, 30, 230);  // history edges stand out
+
+}  // namespace
+
+void Inspector::drawUi() {
+    const ImVec2 size = ImGui::GetIO().DisplaySize;
+    const float graphHeight = std::floor(size.y * 0.42f), previewWidth = std::floor(size.x * 0.55f);
+    ImGui::SetNextWindowPos(ImVec2(0, 0));
+    ImGui::SetNextWindowSize(ImVec2(size.x, graphHeight));
+    ImGui::Begin("Graph", nullptr,
+                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+    drawGraphView();
+    ImGui::End();
+    ImGui::SetNextWindowPos(ImVec2(0, graphHeight));
+    ImGui::SetNextWindowSize(ImVec2(previewWidth, size.y - graphHeight));
+    // No background: the preview pixels are in the swapchain image under this window.
+    ImGui::Begin("Preview", nullptr,
+                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                     ImGuiWindowFlags_NoBackground | ImGuiWindowFlags_NoScrollbar);
+    drawPreviewPanel();
+    ImGui::End();
+    ImGui::SetNextWindowPos(ImVec2(previewWidth, graphHeight));
+    ImGui::SetNextWindowSize(ImVec2(size.x - previewWidth, size.y - graphHeight));
+    ImGui::Begin("Inspector", nullptr,
+                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+    drawSidePanel();
+    ImGui::End();
+}
+
+void Inspector::drawGraphView() {
+    const graph::RenderGraph& g = mSession.graph();
+    const auto& records = g.records();
+    ImGui::BeginChild("canvas", ImVec2(0, 0), false, ImGuiWindowFlags_HorizontalScrollbar);
+    const ImVec2 origin = ImGui::GetCursorScreenPos();
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    mCanvasClip = {draw->GetClipRectMin().x, draw->GetClipRectMin().y, draw->GetClipRectMax().x,
+                   draw->GetClipRectMax().y};
+    auto at = [&](float x, float y) { return ImVec2(origin.x + x, origin.y + y); };
+
+    for (const LayoutEdge& e : mLayout.edges) {
+        const LayoutSlot& from = mLayout.nodes[e.fromNode].outputs[e.fromSlot];
+        const LayoutSlot& to = mLayout.nodes[e.toNode].inputs[e.toSlot];
+        const ImVec2 a = at(from.x, from.y), b = at(to.x, to.y);
+        const float bend = std::max(40.0f, std::abs(b.x - a.x) * 0.4f);
+        const ImU32 colour = e.delay ? kDelayEdgeColour : kEdgeColour;
+        draw->AddBezierCubic(a, ImVec2(a.x + bend, a.y), ImVec2(b.x - bend, b.y), b, colour,
+                             e.delay ? 2.5f : 1.5f);
+        if (e.delay) {
+            const std::string label = "z^-" + std::to_string(e.delay);
+            draw->AddText(ImVec2((a.x + b.x) * 0.5f, (a.y + b.y) * 0.5f - 14), colour,
+                          label.c_str());
+        }
+    }
+
+    const LayoutMetrics metrics;
+    mNodeRects.assign(mLayout.nodes.size(), {0, 0, 0, 0});
+    for (size_t i = 0; i < mLayout.nodes.size(); ++i) {
+        const LayoutNode& n = mLayout.nodes[i];
+        const graph::PassStatus status =
+            i < records.size() ? records[i].status : graph::PassStatus::Culled;
+        const ImVec2 p0 = at(n.x, n.y), p1 = at(n.x + n.width, n.y + n.height);
+        draw->AddRectFilled(p0, p1, IM_COL32(36, 36, 44, 240), 4.0f);
+        draw->AddRectFilled(p0, ImVec2(p1.x, p0.y + metrics.header), colourOf(statusColour(status)),
+                            4.0f, ImDrawFlags_RoundCornersTop);
+        draw->AddRect(
+            p0, p1, n.name == mSelected ? IM_COL32(255, 255, 255, 255) : IM_COL32(90, 90, 100, 255),
+            4.0f, 0, n.name == mSelected ? 2.5f : 1.0f);
+        const std::string title = n.name + " : " + n.type;
+        draw->AddText(ImVec2(p0.x + 6, p0.y + 4), IM_COL32(255, 255, 255, 255), title.c_str());
+        mNodeRects[i] = {p0.x, p0.y, n.width, metrics.header};
+
+        ImGui::SetCursorScreenPos(p0);
+        ImGui::PushID(int(i));
+        if (ImGui::InvisibleButton("node", ImVec2(n.width, metrics.header))) mSelected = n.name;
+        if (ImGui::IsItemHovered()) {
+            std::string tip = n.name + " (" + n.type + "): " + graph::passStatusName(status);
+            if (i < records.size() && !records[i].reason.empty()) tip += "\n" + records[i].reason;
+            if (i < records.size() && !records[i].gpuMs.empty())
+                tip += "\nGPU " + std::to_string(records[i].gpuMs.back()) + " ms";
+            ImGui::SetTooltip("%s", tip.c_str());
+        }
+        for (const LayoutSlot& s : n.inputs) {
+            draw->AddCircleFilled(at(s.x, s.y), 4.0f, IM_COL32(170, 200, 255, 255));
+            draw->AddText(at(s.x + 8, s.y - 7), IM_COL32(210, 210, 220, 255), s.field.c_str());
+        }
+        for (const LayoutSlot& s : n.outputs) {
+            const std::string resource = n.name + "." + s.field;
+            const bool shown = resource == mPreview;
+            draw->AddCircleFilled(
+                at(s.x, s.y), shown ? 6.0f : 4.0f,
+                shown ? IM_COL32(255, 230, 80, 255) : IM_COL32(255, 200, 140, 255));
+            const float w = ImGui::CalcTextSize(s.field.c_str()).x;
+            draw->AddText(at(s.x - 8 - w, s.y - 7), IM_COL32(230, 220, 200, 255), s.field.c_str());
+            ImGui::SetCursorScreenPos(at(s.x - 8 - w, s.y - 7));
+            ImGui::PushID(s.field.c_str());
+            if (ImGui::InvisibleButton("out", ImVec2(w + 14, 14))) {
+                previewField(resource);
+                mSelected = n.name;
+            }
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("preview %s", resource.c_str());
+            ImGui::PopID();
+        }
+        ImGui::PopID();
+    }
+    ImGui::SetCursorScreenPos(origin);
+    ImGui::Dummy(ImVec2(mLayout.width, mLayout.height));
+    ImGui::EndChild();
+}
+
+void Inspector::drawPreviewPanel() {
+    ImGui::SetNextItemWidth(110);
+    if (ImGui::BeginCombo("##channel", previewChannelName(mSettings.channel))) {
+        for (int c = 0; c <= int(PreviewChannel::Luminance); ++c)
+            if (ImGui::Selectable(previewChannelName(PreviewChannel(c)),
+                                  int(mSettings.channel) == c))
+                mSettings.channel = PreviewChannel(c);
+        ImGui::EndCombo();
+    }
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(140);
+    ImGui::SliderFloat("EV", &mSettings.exposure, -10.0f, 10.0f, "%.1f");
+    ImGui::SameLine();
+    ImGui::Checkbox("false colour", &mSettings.falseColour);
+    ImGui::TextUnformatted(mPreview.empty() ? "(click an output slot)" : mPreview.c_str());
+    const ImVec2 avail = ImGui::GetContentRegionAvail();
+    const ImVec2 pos = ImGui::GetCursorScreenPos();
+    ImGui::Dummy(ImVec2(std::max(avail.x, 1.0f), std::max(avail.y, 1.0f)));
+    mPreviewRect[0] = pos.x;
+    mPreviewRect[1] = pos.y;
+    mPreviewRect[2] = std::max(avail.x, 0.0f);
+    mPreviewRect[3] = std::max(avail.y, 0.0f);
+}
+
+void Inspector::drawSidePanel() {
+    const graph::RenderGraph& g = mSession.graph();
+    ImGui::Text("frame %u  %s", unsigned(g.frameIndex()), mPaused ? "(paused)" : "");
+    ImGui::SameLine();
+    if (ImGui::Button(mPaused ? "resume" : "pause")) mPaused = !mPaused;
+    ImGui::SameLine();
+    if (ImGui::Button("step")) mStep = true;
+    ImGui::SameLine();
+    if (ImGui::Button("reset")) mSession.graph().reset();
+    ImGui::SameLine();
+    ImGui::Checkbox("gaze = mouse", &mGazeFollowsMouse);
+    if (!mError.empty()) {
+        ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(255, 110, 100, 255));
+        ImGui::TextWrapped("%s", mError.c_str());
+        ImGui::PopStyleColor();
+    }
+    // Pixel under the mouse, and the gaze when it follows the mouse.
+    const ImVec2 mouse = ImGui::GetIO().MousePos;
+    if (auto px = previewPixelAt(mBlit, mFit, mouse.x, mouse.y);
+        px && !mPreviewImage.pixels.empty() && px->first < mPreviewImage.width &&
+        px->second < mPreviewImage.height) {
+        const float* v =
+            &mPreviewImage.pixels[(size_t(px->second) * mPreviewImage.width + px->first) * 4];
+        ImGui::Text("(%u, %u) = %.4g %.4g %.4g %.4g", px->first, px->second, v[0], v[1], v[2],
+                    v[3]);
+        if (mGazeFollowsMouse) {
+            const glm::vec2 uv((float(px->first) + 0.5f) / float(mPreviewImage.width),
+                               (float(px->second) + 0.5f) / float(mPreviewImage.height));
+            Gaze gaze = mGaze.value_or(Gaze{glm::vec2(0.5f), glm::vec2(0.5f)});
+            if (mSession.stereo()) {
+                const int eye = uv.x < 0.5f ? 0 : 1;
+                gaze[size_t(eye)] = glm::vec2(uv.x * 2.0f - float(eye), uv.y);
+            } else {
+                gaze = {uv, uv};
+            }
+            mGaze = gaze;
+        }
+    }
+    drawTimings();
+    if (!mSelected.empty()) {
+        const size_t node = g.plan().findNode(mSelected);
+        if (node != graph::kNone && ImGui::CollapsingHeader(("Parameters: " + mSelected).c_str(),
+                                                            ImGuiTreeNodeFlags_DefaultOpen)) {
+            if (auto change = drawParamWidgets(*g.plan().nodes[node].pass))
+                setParam(mSelected, change->name, change->value);
+        }
+    }
+}
+
+void Inspector::drawTimings() {
+    const graph::RenderGraph& g = mSession.graph();
+    if (!ImGui::CollapsingHeader("GPU time", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    ImGui::Text("frame %.2f ms GPU  (record %.2f ms CPU)", mLastTiming.gpuMs,
+                mLastTiming.recordCpuMs);
+    if (!mFrameMsHistory.empty()) {
+        std::vector<float> history(mFrameMsHistory.begin(), mFrameMsHistory.end());
+        ImGui::PlotLines("##frames", history.data(), int(history.size()), 0, nullptr, 0.0f, FLT_MAX,
+                         ImVec2(-1, 36));
+    }
+    // Only passes that ran in the last frame (executed, or copied through when bypassed) have a
+    // time of that frame; a cached or skipped pass's last entry is from an earlier frame.
+    auto lastMs = [&](size_t n) {
+        const auto& r = g.records()[n];
+        const bool ran =
+            r.status == graph::PassStatus::Executed || r.status == graph::PassStatus::Bypassed;
+        return ran && !r.gpuMs.empty() ? r.gpuMs.back() : 0.0;
+    };
+    double longest = 1e-6;
+    for (size_t n : g.plan().order) longest = std::max(longest, lastMs(n));
+    for (size_t n : g.plan().order) {
+        const auto& r = g.records()[n];
+        const double ms = lastMs(n);
+        const std::string label = g.plan().nodes[n].name + "  " + std::to_string(ms).substr(0, 6) +
+                                  " ms  " + graph::passStatusName(r.status);
+        ImGui::PushStyleColor(ImGuiCol_PlotHistogram, colourOf(statusColour(r.status)));
+        ImGui::ProgressBar(float(ms / longest), ImVec2(-1, 0), label.c_str());
+        ImGui::PopStyleColor();
+    }
+    ImGui::Text("memory: transient %.1f MiB (%.1f without aliasing), persistent %.1f MiB",
+                double(g.plan().transientBytes()) / 1048576.0,
+                double(g.plan().transientBytesWithoutAliasing()) / 1048576.0,
+                double(g.plan().persistentBytes()) / 1048576.0);
+}
+
+void Inspector::writeScreenshot(const std::string& path, const image::ImageRGBA& pixels) const {
+    image::writePng(path, pixels, image::PngEncoding::AsIs);
+    // What a test needs to find things in the picture: where the preview and every node header
+    // were drawn, and each node's status and colour.
+    nlohmann::json info;
+    info["frame"] = mFrame;
+    info["window"] = {pixels.width, pixels.height};
+    info["preview"] = {
+        {"resource", mPreview},
+        {"rect", {mBlit.x, mBlit.y, mBlit.width, mBlit.height}},
+        {"image", {mBlit.x + mFit.offsetX, mBlit.y + mFit.offsetY, mFit.width, mFit.height}}};
+    info["selected"] = mSelected;
+    info["error"] = mError;
+    const auto& records = mSession.graph().records();
+    info["nodes"] = nlohmann::json::array();
+    for (size_t i = 0; i < mLayout.nodes.size() && i < mNodeRects.size(); ++i) {
+        const auto status = i < records.size() ? records[i].status : graph::PassStatus::Culled;
+        const auto c = statusColour(status);
+        const auto& r = mNodeRects[i];
+        info["nodes"].push_back(
+            {{"name", mLayout.nodes[i].name},
+             {"status", graph::passStatusName(status)},
+             {"reason", i < records.size() ? records[i].reason : ""},
+             {"header", mNodeRects[i]},
+             {"visible", r[0] >= mCanvasClip[0] && r[1] >= mCanvasClip[1] &&
+                             r[0] + r[2] <= mCanvasClip[2] && r[1] + r[3] <= mCanvasClip[3]},
+             {"colour", {c[0], c[1], c[2]}}});
+    }
+    std::ofstream(path + ".json") << info.dump(2) << "\n";
+}
+
+}  // namespace fovea::editor
