@@ -113,7 +113,7 @@ void RecurrentBlurPass::reflect(graph::Reflection& r) const {
                 "stage's history)");
         r.output("result", kRgba32)
             .sameAs(ref)
-            .doc("denoised demodulated radiance after temporal stabilization, a = N");
+            .doc("denoised demodulated radiance after temporal stabilization, a = 1");
         r.output("radius", kR32).sameAs(ref).doc("debug: blur radius in px (0 on sky)");
         r.internal("stabilized", kR32)
             .sameAs(ref)

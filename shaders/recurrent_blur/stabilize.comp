@@ -16,7 +16,7 @@ uniform sampler2D color;            // the spatial stage's input, a = N
 uniform sampler2D depth;
 uniform sampler2D motion;
 uniform sampler2D prev_stabilized;  // own luminance history (pass-declared)
-layout(rgba32f) uniform writeonly image2D result;  // rgb stabilized, a = N
+layout(rgba32f) uniform writeonly image2D result;  // rgb stabilized, a = 1
 layout(r32f) uniform writeonly image2D stabilized;
 
 layout(push_constant) uniform Params {
@@ -86,7 +86,7 @@ void main() {
         }
     }
     vec3 rgb = y > 1e-20 ? c.rgb * (ys / y) : c.rgb;  // guard: black stays black
-    imageStore(result, p, sanitize(vec4(rgb, n)));
+    imageStore(result, p, sanitize(vec4(rgb, 1.0)));  // a = 1: the image is final (N: color.a)
     float yOut = luminance(rgb);
     imageStore(stabilized, p, vec4(isnan(yOut) || isinf(yOut) ? 0.0 : max(yOut, 0.0)));
 }
