@@ -328,3 +328,31 @@ TEST_F(ReBLURTest, TemporalStageWithoutHistoryEdgeIsAnInputError) {
             << e.what();
     }
 }
+
+// N is the bilinear-weighted average of the valid taps' counts plus one, never their max: the
+// right half of a plane appears at frame 10 (N = 0 there, N = 10 on the left); with a motion of
+// +0.5 px the next frame's pixel x = 3 reads taps x = 3 (N = 10) and x = 4 (N = 0) at 1/2 each:
+// N = 6 (a max would give 11).
+TEST_F(ReBLURTest, FrameCountIsTheWeightedTapAverage) {
+    const int w = 8, h = 4;
+    ReblurRig rig(ctx(), w, h, "{}", "{}");
+    rig.init();
+    std::vector<float> halfSky(size_t(w) * h, 5.0f);
+    for (int y = 0; y < h; ++y)
+        for (int x = w / 2; x < w; ++x) halfSky[size_t(y) * w + x] = 0.0f;
+    rig.setGeometry(test::facingPlanes(w, h, halfSky));
+    const Image in = test::constantImage(w, h, 0.5f, 0.5f, 0.5f);
+    for (int f = 0; f < 10; ++f) rig.frame(in);
+    rig.setGeometry(test::facingPlane(w, h, 5.0f));
+    rig.frame(in);
+    Image acc = rig.get("rbt.accumulated");
+    EXPECT_EQ(at(acc, w, 3, 1, 3), 10.0f);
+    EXPECT_EQ(at(acc, w, 4, 1, 3), 0.0f);
+    Image motion(size_t(w) * h * 4, 0.0f);
+    for (size_t i = 0; i < motion.size(); i += 4) motion[i] = 0.5f;
+    rig.setMotion(motion);
+    rig.frame(in);
+    acc = rig.get("rbt.accumulated");
+    EXPECT_FLOAT_EQ(at(acc, w, 3, 1, 3), 6.0f);
+    EXPECT_FLOAT_EQ(at(acc, w, 5, 1, 3), 1.0f);
+}
