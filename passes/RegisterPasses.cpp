@@ -10,8 +10,10 @@
 #include "passes/Combine/CombinePass.h"
 #include "passes/FoveationMask/FoveationMaskPass.h"
 #include "passes/GBuffer/GBufferPass.h"
+#include "passes/HistoryFix/HistoryFixPass.h"
 #include "passes/ImageSource/ImageSourcePass.h"
 #include "passes/PathTrace/PathTracePass.h"
+#include "passes/RecurrentBlur/RecurrentBlurPass.h"
 #include "passes/Remodulate/RemodulatePass.h"
 #include "passes/SampleList/SampleListPass.h"
 #include "passes/TAA/TAAPass.h"
@@ -69,6 +71,14 @@ void registerBuiltinPasses() {
         "BMFR",
         "Blockwise multi-order feature regression (seed 003 P2 §3): accumulation, 32x32 block "
         "QR fit of [1, n, w, w^2], second accumulation, remodulation; numerically guarded."));
+    r.add(info<passes::RecurrentBlurPass>(
+        "RecurrentBlur",
+        "ReBLUR diffuse (seed 004): stage temporal = pre-blur + accumulation 1/(1+N); stage "
+        "spatial = blur shrinking with N + post-blur (recurrent history) + stabilization."));
+    r.add(info<passes::HistoryFixPass>(
+        "HistoryFix",
+        "Seed 004: rebuild pixels with few accumulated frames from a mip pyramid (or NRD's "
+        "strided 5x5); the others pass bit-exactly. Follows any temporal accumulation."));
 }
 
 }  // namespace fovea

@@ -171,6 +171,24 @@ TEST_F(GoldenTest, KoskelaBMFR) {
     EXPECT_TRUE(fovea::test::goldenMatches(ctx(), spec));
 }
 
+TEST_F(GoldenTest, ReBLUR) {
+    // Seed 004's ReBLUR diffuse pipeline (graphs/reblur.json): 1 spp, RecurrentBlur temporal,
+    // HistoryFix, RecurrentBlur spatial, Remodulate, TAA; four frames so that the recurrence
+    // (rbs.history -> rbt.history), HistoryFix (N < 3) and the stabilization are exercised.
+    GoldenSpec spec = cornellGolden("reblur", "graphs/reblur.json", false);
+    spec.width = spec.height = 64;
+    spec.frames = 4;
+    EXPECT_TRUE(fovea::test::goldenMatches(ctx(), spec));
+}
+
+TEST_F(GoldenTest, BMFRHistoryFix) {
+    // graphs/bmfr_historyfix.json: HistoryFix after BMFR (count from bmfr.accumulated).
+    GoldenSpec spec = cornellGolden("bmfr_historyfix", "graphs/bmfr_historyfix.json", false);
+    spec.width = spec.height = 64;
+    spec.frames = 4;
+    EXPECT_TRUE(fovea::test::goldenMatches(ctx(), spec));
+}
+
 TEST_F(GoldenTest, Chain20) {
     // 18 chained Combines of animated noise (aliased transients), tonemapped to rgba8.
     EXPECT_TRUE(fovea::test::goldenMatches(ctx(), golden("chain20", "graphs/tests/chain20.json")));

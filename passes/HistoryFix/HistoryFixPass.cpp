@@ -1,0 +1,116 @@
+#include "passes/HistoryFix/HistoryFixPass.h"
+
+#include <algorithm>
+
+#include "core/scene/Camera.h"
+#include "core/vk/Barriers.h"
+#include "core/vk/ComputePipeline.h"
+
+namespace fovea::passes {
+
+namespace {
+constexpr int kLevels = 4;  // seed 004: "mips 1..4"
+}
+
+void HistoryFixPass::params(graph::ParamVisitor& v) {
+    v.add("historyFixFrames", mFixFrames, 3,
+          "pixels with N < this are rebuilt, the others pass bit-exactly (NRD 3; the talk's "
+          "code uses 4); 0 = pass everything through",
+          {0, 8});
+    v.add("method", mMethod, "mips",
+          "mips = the talk's mip pyramid, level ceil(4(1 - N/historyFixFrames)) -> 4, 3, 2 with a "
+          "depth-aware upsample; stride = NRD's strided 5x5 (stride floor(basePixelStride/(2+N)))",
+          {"mips", "stride"});
+    v.add("countOffset", mCountOffset, 0.0f,
+          "N = (count or color).a - countOffset: 0 for RecurrentBlur (a = N), 1 for BMFR's "
+          "accumulated "
+          "(a = samples = N + 1)",
+          {0.0, 16.0});
+    v.add("basePixelStride", mBasePixelStride, 14.0f, "stride method: px at N = -2 (NRD 14)",
+          {1.0, 64.0});
+    v.add("depthSensitivity", mDepthSensitivity, 0.05f,
+          "relative view-depth difference at which a coarse sample's weight reaches 0 (ours: the "
+          "talk names UPSAMPLING_VIEWZ_SENSITIVITY without a value)",
+          {1e-4, 10.0});
+    v.add("eyes", mEyes, 0,
+          "side-by-side eyes (nothing crosses the seam); 0 = the frame camera's eye count", {0, 2});
+}
+
+void HistoryFixPass::reflect(graph::Reflection& r) const {
+    const auto rgba32 = vk::Format::eR32G32B32A32Sfloat;
+    r.input("color").floatOnly().doc(
+        "accumulated colour, a = frame count (see countOffset); NaN/Inf leave as 0");
+    r.input("depth").floatOnly().sameAs("color").doc("GBuffer linear view depth; 0 = sky");
+    r.input("count").optional().floatOnly().sameAs("color").doc(
+        "optional: its alpha is the frame count instead of color.a (e.g. BMFR's accumulated "
+        "next to its filtered colour)");
+    r.output("result", rgba32)
+        .sameAs("color")
+        .doc("colour with few-frame pixels rebuilt; a = color.a");
+    // Level 1 at full size: with two eyes of odd width the per-eye blocks need ceil(W/2) + 1
+    // columns; levels 2-4 fit into half the size.
+    r.internal("mip1", rgba32).sameAs("color").doc("level 1: 2x2 means per eye, a = mean depth");
+    for (int l = 2; l <= kLevels; ++l)
+        r.internal("mip" + std::to_string(l), rgba32)
+            .scaled(0.5f)
+            .doc("level " + std::to_string(l) + ": 2^L blocks per eye, a = mean depth");
+}
+
+void HistoryFixPass::compile(graph::CompileContext& ctx) {
+    mMipFirst = ctx.createPipeline("history_fix/mip_first.comp");
+    mMipDown = ctx.createPipeline("history_fix/mip_down.comp", {}, {"src", "dst"});
+    mFix = ctx.createPipeline("history_fix/fix.comp");
+}
+
+void HistoryFixPass::execute(graph::ExecuteContext& ctx) {
+    const auto& cmd = ctx.cmd();
+    const auto& out = ctx.image("result");
+    const int width = int(out.width()), height = int(out.height());
+    int eyes = mEyes > 0 ? mEyes : int(std::clamp(ctx.camera().eyeCount, 1u, scene::kMaxEyes));
+    if (eyes > width) eyes = 1;
+    const int eyeWidth = std::max(width / eyes, 1);
+    const int widest = std::max(eyeWidth, width - (eyes - 1) * eyeWidth);
+    glm::ivec4 blocks, rows;
+    for (int l = 1; l <= kLevels; ++l) {
+        const int s = 1 << l;
+        blocks[l - 1] = (widest + s - 1) / s;
+        rows[l - 1] = (height + s - 1) / s;
+    }
+
+    if (mMethod == "mips") {
+        ctx.bindFields(*mMipFirst);
+        mMipFirst->set("size", glm::ivec2(width, height))
+            .set("eyeWidth", eyeWidth)
+            .set("eyes", eyes)
+            .set("blocks", blocks[0])
+            .set("height", rows[0]);
+        mMipFirst->dispatch(cmd, uint32_t(blocks[0] * eyes), uint32_t(rows[0]));
+        for (int l = 2; l <= kLevels; ++l) {
+            gpu::computeToComputeBarrier(cmd);
+            mMipDown->bind("src", ctx.image("mip" + std::to_string(l - 1)))
+                .bind("dst", ctx.image("mip" + std::to_string(l)));
+            mMipDown->set("eyes", eyes)
+                .set("blocks", blocks[l - 1])
+                .set("height", rows[l - 1])
+                .set("srcBlocks", blocks[l - 2])
+                .set("srcHeight", rows[l - 2]);
+            mMipDown->dispatch(cmd, uint32_t(blocks[l - 1] * eyes), uint32_t(rows[l - 1]));
+        }
+        gpu::computeToComputeBarrier(cmd);
+    }
+    ctx.bindFields(*mFix);
+    mFix->set("size", glm::ivec2(width, height))
+        .set("eyeWidth", eyeWidth)
+        .set("eyes", eyes)
+        .set("blocks", blocks)
+        .set("heights", rows)
+        .set("fixFrames", float(mFixFrames))
+        .set("countOffset", mCountOffset)
+        .set("method", int(mMethod == "stride"))
+        .set("baseStride", mBasePixelStride)
+        .set("depthSensitivity", mDepthSensitivity)
+        .set("useCount", int(ctx.connected("count")));
+    mFix->dispatch(cmd, out.width(), out.height());
+}
+
+}  // namespace fovea::passes

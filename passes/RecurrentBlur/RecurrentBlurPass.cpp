@@ -1,0 +1,250 @@
+#include "passes/RecurrentBlur/RecurrentBlurPass.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/scene/Camera.h"
+#include "core/vk/Barriers.h"
+#include "core/vk/ComputePipeline.h"
+
+namespace fovea::passes {
+
+namespace {
+constexpr auto kRgba32 = vk::Format::eR32G32B32A32Sfloat;
+constexpr auto kR32 = vk::Format::eR32Sfloat;
+constexpr float kGoldenAngle = 2.39996323f;  // per-frame rotation of the 8-tap disk
+}  // namespace
+
+void RecurrentBlurPass::params(graph::ParamVisitor& v) {
+    v.add("stage", mStage, "temporal",
+          "temporal = pre-blur + temporal accumulation (+ firefly suppressor); spatial = blur + "
+          "post-blur (the recurrent history) + temporal stabilization. A ReBLUR graph uses one "
+          "node of each with HistoryFix between them (docs/passes/RecurrentBlur.md)",
+          {"temporal", "spatial"});
+    v.add("maxAccumulatedFrames", mMaxAccumulatedFrames, 30,
+          "cap of the frame count N; the new frame's weight is 1/(1+N), so 1/31 at the cap "
+          "(seed 004: accumulation speed 1/(1+N); NRD maxAccumulatedFrameNum)",
+          {0, 63});
+    v.add("historyFixFrames", mHistoryFixFrames, 3,
+          "spatial: N below which HistoryFix rebuilds a pixel; the blur keeps its full radius "
+          "while N < 2/3 of it and fades the boost until 4/3 of it (specs §2)",
+          {0, 3});
+    v.add("maxBlurRadius", mMaxBlurRadius, 30.0f,
+          "px: blur radius at N = 0 and h = 1 (post-blur: twice this). Also sets the firefly "
+          "suppressor's strength",
+          {0.0, 256.0});
+    v.add("minBlurRadius", mMinBlurRadius, 1.0f, "px: smallest blur radius", {0.0, 256.0});
+    v.add("prepassBlurRadius", mPrepassBlurRadius, 30.0f,
+          "temporal: px of the pre-blur at h = 1 (0 = off); fixes outliers before accumulation",
+          {0.0, 256.0});
+    v.add("radiusScaling", mRadiusScaling, "sqrt",
+          "how the radius shrinks with N: sqrt = maxBlurRadius*sqrt(h*s') (NRD), linear = "
+          "maxBlurRadius*h*s' (the talk's 1/(1+N)); s' = 1/(1+N) once HistoryFix is done",
+          {"sqrt", "linear"});
+    v.add("planeDistanceSensitivity", mPlaneDistanceSensitivity, 0.02f,
+          "blur: a tap whose distance to the pixel's plane reaches this fraction of the frustum "
+          "size gets weight 0 (NRD 0.02)",
+          {1e-6, 1.0});
+    v.add("disocclusionThreshold", mDisocclusionThreshold, 0.01f,
+          "temporal: a history tap is dropped when the previous surface is farther than this "
+          "fraction of the frustum size from the pixel's plane (talk: 0.5-1.5 %)",
+          {0.0, 1.0});
+    v.add("minHitDistanceWeight", mMinHitDistanceWeight, 0.1f,
+          "blur: floor of the hit-distance weight (NRD 0.1)", {0.0, 1.0});
+    v.add("fireflySuppression", mFireflySuppression, true,
+          "temporal: limit a new sample's luminance to (2 + 38/(N+1)) x the history's");
+    v.add("maxStabilizedFrames", mMaxStabilizedFrames, 63,
+          "spatial: temporal stabilization of luminance, strength <= m/(1+m); 0 = off", {0, 63});
+    v.add("antilag", mAntilag, true,
+          "spatial: shorten the stabilization where the stabilized history leaves the "
+          "neighbourhood's mean +- antilagSigmaScale sigma");
+    v.add("antilagSigmaScale", mAntilagSigmaScale, 4.0f, "spatial: antilag band in sigmas",
+          {0.0, 100.0});
+    v.add("antilagSensitivity", mAntilagSensitivity, 3.0f,
+          "spatial: A = 1/(1 + sensitivity*d*N), d = relative distance outside the band",
+          {0.0, 1000.0});
+    v.add("eyes", mEyes, 0,
+          "side-by-side eyes (no tap crosses the seam); 0 = the frame camera's eye count", {0, 2});
+}
+
+void RecurrentBlurPass::reflect(graph::Reflection& r) const {
+    const bool temporal = mStage == "temporal";
+    if (temporal) {
+        r.input("radiance")
+            .floatOnly()
+            .doc("noisy demodulated radiance (PathTrace.demodulated); NaN/Inf read as 0");
+        r.input("hit_distance")
+            .floatOnly()
+            .sameAs("radiance")
+            .doc("first indirect hit distance (PathTrace.hit_distance); 0 = no hit = far");
+    } else {
+        r.input("color").floatOnly().doc(
+            "accumulated colour, a = N (temporal stage's accumulated, or HistoryFix's result)");
+        r.input("hit").floatOnly().sameAs("color").doc(
+            "temporal stage's accumulated normalized hit distance");
+    }
+    const char* ref = temporal ? "radiance" : "color";
+    r.input("normal").floatOnly().sameAs(ref).doc("GBuffer normal (world, w 1 = hit)");
+    r.input("position").floatOnly().sameAs(ref).doc("GBuffer world position");
+    r.input("depth").floatOnly().sameAs(ref).doc("GBuffer linear view depth; 0 = sky");
+    r.input("motion").optional().floatOnly().sameAs(ref).doc(
+        "GBuffer motion (previous - current pixel); open = still camera");
+    if (temporal) {
+        r.input("history").optional().floatOnly().sameAs(ref).doc(
+            "the recurrent history: the spatial stage's `history` through a delay-1 edge");
+        r.output("preblurred", kRgba32)
+            .sameAs(ref)
+            .doc("pre-blurred radiance, a = normalized hit distance h");
+        r.output("accumulated", kRgba32)
+            .sameAs(ref)
+            .doc("temporally accumulated radiance, a = frame count N (0 = no history)");
+        r.output("hit", kR32).sameAs(ref).doc("accumulated normalized hit distance h in [0, 1]");
+        r.output("radius", kR32).sameAs(ref).doc("debug: pre-blur radius in px (0 on sky)");
+        r.internal("geo", kRgba32)
+            .sameAs(ref)
+            .history()
+            .doc("own history: world position, w = N (-1 = no surface)");
+    } else {
+        r.output("blurred", kRgba32).sameAs(ref).doc("after the blur, a = N");
+        r.output("history", kRgba32)
+            .sameAs(ref)
+            .doc(
+                "after the post-blur, a = h: the recurrent history (delay-1 edge to the temporal "
+                "stage's history)");
+        r.output("result", kRgba32)
+            .sameAs(ref)
+            .doc("denoised demodulated radiance after temporal stabilization, a = 1");
+        r.output("radius", kR32).sameAs(ref).doc("debug: blur radius in px (0 on sky)");
+        r.internal("stabilized", kR32)
+            .sameAs(ref)
+            .history()
+            .doc("own history: stabilized luminance");
+    }
+}
+
+void RecurrentBlurPass::validate(const graph::ValidateContext& ctx) const {
+    if (mMinBlurRadius > mMaxBlurRadius) ctx.fail("minBlurRadius", "must not exceed maxBlurRadius");
+    if (mStage == "temporal" && !ctx.connected("history"))
+        ctx.fail("stage",
+                 "the temporal stage needs its 'history' input: a delay-1 edge from the spatial "
+                 "stage's 'history' output (the recurrence)");
+}
+
+void RecurrentBlurPass::compile(graph::CompileContext& ctx) {
+    mUseMotion = ctx.connected("motion");
+    mBlur = ctx.createPipeline("recurrent_blur/blur.comp", {}, {"src", "hitSrc", "dst"});
+    if (mStage == "temporal")
+        mTemporal = ctx.createPipeline("recurrent_blur/temporal.comp");
+    else
+        mStabilize = ctx.createPipeline("recurrent_blur/stabilize.comp");
+}
+
+void RecurrentBlurPass::setBlurConstants(graph::ExecuteContext& ctx, int mode, float maxRadius) {
+    const auto& cam = ctx.camera();
+    const float angle = kGoldenAngle * float(ctx.frame().index % 1024);
+    mBlur->set("tanHalfFov", std::tan(0.5f * cam.yfov))
+        .set("mode", mode)
+        .set("maxRadius", maxRadius)
+        .set("minRadius", mode == 0 ? std::min(mMinBlurRadius, maxRadius) : mMinBlurRadius)
+        .set("linearScaling", int(mRadiusScaling == "linear"))
+        .set("historyFixFrames", float(mHistoryFixFrames))
+        .set("planeDistance", mPlaneDistanceSensitivity)
+        .set("minHitWeight", mMinHitDistanceWeight)
+        .set("rotation", glm::vec2(std::cos(angle), std::sin(angle)))
+        .set("writeRadius", int(mode != 2))
+        .set("eyePosition0", glm::vec4(cam.eyes[0].position, 1.0f))
+        .set("eyePosition1", glm::vec4(cam.eyes[1].position, 1.0f));
+}
+
+void RecurrentBlurPass::execute(graph::ExecuteContext& ctx) {
+    if (mStage == "temporal")
+        executeTemporal(ctx);
+    else
+        executeSpatial(ctx);
+}
+
+namespace {
+struct EyeLayout {
+    glm::ivec2 size;
+    int eyeWidth, eyes;
+};
+EyeLayout eyeLayout(const gpu::Image& out, int eyesParam, uint32_t cameraEyes) {
+    const int width = int(out.width()), height = int(out.height());
+    int eyes = eyesParam > 0 ? eyesParam : int(std::clamp(cameraEyes, 1u, scene::kMaxEyes));
+    if (eyes > width) eyes = 1;  // a 1-pixel-wide image cannot be split
+    return {{width, height}, std::max(width / eyes, 1), eyes};
+}
+}  // namespace
+
+void RecurrentBlurPass::executeTemporal(graph::ExecuteContext& ctx) {
+    const auto& cmd = ctx.cmd();
+    const auto& out = ctx.image("accumulated");
+    const EyeLayout e = eyeLayout(out, mEyes, ctx.camera().eyeCount);
+
+    // Pre-blur: radiance -> preblurred (a = h). prepassBlurRadius 0 copies (sanitized).
+    ctx.bindFields(*mBlur);
+    mBlur->bind("src", ctx.image("radiance"))
+        .bind("hitSrc", ctx.image("hit_distance"))
+        .bind("dst", ctx.image("preblurred"));
+    mBlur->set("size", e.size).set("eyeWidth", e.eyeWidth).set("eyes", e.eyes);
+    setBlurConstants(ctx, 0, mPrepassBlurRadius);
+    mBlur->dispatch(cmd, out.width(), out.height());
+    gpu::computeToComputeBarrier(cmd);
+
+    // Temporal accumulation. Both histories must hold a frame: the recurrent input (false on the
+    // first frame, after a reset or cut) and our own geometry.
+    const bool useHistory = ctx.historyValid("history") && ctx.historyValid("geo");
+    ctx.bindFields(*mTemporal);
+    mTemporal->set("size", e.size)
+        .set("eyeWidth", e.eyeWidth)
+        .set("eyes", e.eyes)
+        .set("tanHalfFov", std::tan(0.5f * ctx.camera().yfov))
+        .set("useHistory", int(useHistory))
+        .set("useMotion", int(mUseMotion))
+        .set("maxFrames", float(mMaxAccumulatedFrames))
+        .set("threshold", mDisocclusionThreshold)
+        .set("firefly", int(mFireflySuppression))
+        .set("maxBlurRadius", mMaxBlurRadius);
+    mTemporal->dispatch(cmd, out.width(), out.height());
+}
+
+void RecurrentBlurPass::executeSpatial(graph::ExecuteContext& ctx) {
+    const auto& cmd = ctx.cmd();
+    const auto& out = ctx.image("result");
+    const EyeLayout e = eyeLayout(out, mEyes, ctx.camera().eyeCount);
+
+    // Blur: color -> blurred, radius from N (color.a) and h.
+    ctx.bindFields(*mBlur);
+    mBlur->bind("src", ctx.image("color"))
+        .bind("hitSrc", ctx.image("hit"))
+        .bind("dst", ctx.image("blurred"));
+    mBlur->set("size", e.size).set("eyeWidth", e.eyeWidth).set("eyes", e.eyes);
+    setBlurConstants(ctx, 1, mMaxBlurRadius);
+    mBlur->dispatch(cmd, out.width(), out.height());
+    gpu::computeToComputeBarrier(cmd);
+
+    // Post-blur: blurred -> history (the recurrent feedback).
+    ctx.bindFields(*mBlur);
+    mBlur->bind("src", ctx.image("blurred"))
+        .bind("hitSrc", ctx.image("hit"))
+        .bind("dst", ctx.image("history"));
+    mBlur->set("size", e.size).set("eyeWidth", e.eyeWidth).set("eyes", e.eyes);
+    setBlurConstants(ctx, 2, mMaxBlurRadius);
+    mBlur->dispatch(cmd, out.width(), out.height());
+    gpu::computeToComputeBarrier(cmd);
+
+    // Temporal stabilization of luminance (own history: stabilized).
+    ctx.bindFields(*mStabilize);
+    mStabilize->set("size", e.size)
+        .set("eyeWidth", e.eyeWidth)
+        .set("eyes", e.eyes)
+        .set("useHistory", int(ctx.historyValid("stabilized")))
+        .set("useMotion", int(mUseMotion))
+        .set("maxStabilized", float(mMaxStabilizedFrames))
+        .set("antilag", int(mAntilag))
+        .set("antilagSigma", mAntilagSigmaScale)
+        .set("antilagSensitivity", mAntilagSensitivity);
+    mStabilize->dispatch(cmd, out.width(), out.height());
+}
+
+}  // namespace fovea::passes

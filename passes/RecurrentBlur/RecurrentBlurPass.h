@@ -1,0 +1,54 @@
+// RecurrentBlur: the ReBLUR diffuse denoiser of seed 004 (the ReBLUR talk; notes, NRD defaults
+// and oracles in ../shared/design/denoiser-specs.md §2) as two stages of one pass type, so that
+// HistoryFix (a separate pass) can sit between them and the recurrence is an edge of the graph:
+//
+//   rbt: RecurrentBlur{stage: temporal}  pre-blur -> temporal accumulation (+ firefly suppressor)
+//   hf:  HistoryFix                      rebuilds pixels with few accumulated frames
+//   rbs: RecurrentBlur{stage: spatial}   blur (radius shrinks with N) -> post-blur -> stabilization
+//   rbs.history --delay 1--> rbt.history  (the post-blurred output is the recurrent history)
+//
+// Each stage keeps its private state as pass-declared history: the temporal stage its geometry
+// and frame count (`geo`), the spatial stage its stabilized luminance (`stabilized`).
+#pragma once
+#include <string>
+
+#include "core/graph/Pass.h"
+
+namespace fovea::passes {
+
+class RecurrentBlurPass : public graph::Pass {
+public:
+    void params(graph::ParamVisitor& v) override;
+    void reflect(graph::Reflection& r) const override;
+    void validate(const graph::ValidateContext& ctx) const override;
+    void compile(graph::CompileContext& ctx) override;
+    void execute(graph::ExecuteContext& ctx) override;
+    bool usesCamera() const override { return true; }  // frustum size, eyes, view vector
+    std::string variant() const override { return mStage; }
+
+private:
+    void executeTemporal(graph::ExecuteContext& ctx);
+    void executeSpatial(graph::ExecuteContext& ctx);
+    void setBlurConstants(graph::ExecuteContext& ctx, int mode, float maxRadius);
+
+    std::string mStage = "temporal";
+    int mMaxAccumulatedFrames = 30;
+    int mHistoryFixFrames = 3;
+    float mMaxBlurRadius = 30.0f;
+    float mMinBlurRadius = 1.0f;
+    float mPrepassBlurRadius = 30.0f;
+    std::string mRadiusScaling = "sqrt";
+    float mPlaneDistanceSensitivity = 0.02f;
+    float mDisocclusionThreshold = 0.01f;
+    float mMinHitDistanceWeight = 0.1f;
+    bool mFireflySuppression = true;
+    int mMaxStabilizedFrames = 63;
+    bool mAntilag = true;
+    float mAntilagSigmaScale = 4.0f;
+    float mAntilagSensitivity = 3.0f;
+    int mEyes = 0;
+    bool mUseMotion = false;
+    std::unique_ptr<gpu::ComputePipeline> mBlur, mTemporal, mStabilize;
+};
+
+}  // namespace fovea::passes

@@ -1,0 +1,126 @@
+#version 460
+// HistoryFix (seed 004, the ReBLUR talk; specs §2 HistoryFix): a pixel with few accumulated
+// frames (N < historyFixFrames, e.g. just disoccluded) is rebuilt from coarser data, a pixel with
+// enough history is copied bit-exactly ("no disocclusion = no work").
+//   method 0 (mips, the talk): level L = ceil(4 (1 - N / Nhf)) -> 4, 3, 2 over the first three
+//     frames (the talk's "frame 0 mip 4, frame 1 mip 3, frame 2 mip 2"), upsampled bilinearly
+//     with depth-aware weights [z_L > 0] * saturate(1 - |z_L - z| / (0.05 z)) (the talk names
+//     UPSAMPLING_VIEWZ_SENSITIVITY without a value; 0.05 is ours). No weight: the next finer level.
+//   method 1 (stride, NRD v4.14): 5x5 taps without centre and corners at a stride of
+//     floor(basePixelStride / (2 + N)) px, weight (1 + N_q) x the same depth weight; the sum starts
+//     with the pixel itself at weight 1 + N.
+// The count is color.a or, when connected, count.a (BMFR: filtered colour, accumulated count).
+// Alpha passes through.
+#extension GL_GOOGLE_include_directive : require
+#include "common/color.glsl"
+#include "history_fix/mip_common.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+uniform sampler2D color;
+uniform sampler2D depth;
+uniform sampler2D count;  // optional: the frame count is its alpha (else color.a)
+uniform sampler2D mip1;
+uniform sampler2D mip2;
+uniform sampler2D mip3;
+uniform sampler2D mip4;
+layout(rgba32f) uniform writeonly image2D result;
+
+layout(push_constant) uniform Params {
+    ivec2 size;
+    int eyeWidth;
+    int eyes;
+    ivec4 blocks;        // blocks per eye of levels 1..4
+    ivec4 heights;       // rows of levels 1..4
+    float fixFrames;     // Nhf: pixels with N < Nhf are rebuilt
+    float countOffset;   // N = alpha - countOffset (1 for a sample count such as BMFR's)
+    int method;          // 0 mips, 1 stride
+    float baseStride;    // px (stride method)
+    float depthSensitivity;
+    int useCount;        // 1: N from count.a, else from color.a
+} pc;
+
+float countAt(ivec2 q, vec4 c) {
+    float a = pc.useCount != 0 ? texelFetch(count, q, 0).a : c.a;
+    return a - pc.countOffset;
+}
+
+float depthWeight(float zq, float z) {  // z > 0 (caller)
+    return zq > 0.0 ? clamp(1.0 - abs(zq - z) / (pc.depthSensitivity * z), 0.0, 1.0) : 0.0;
+}
+
+vec4 mipFetch(int level, ivec2 t) {
+    if (level == 1) return texelFetch(mip1, t, 0);
+    if (level == 2) return texelFetch(mip2, t, 0);
+    if (level == 3) return texelFetch(mip3, t, 0);
+    return texelFetch(mip4, t, 0);
+}
+
+// Depth-aware bilinear upsample of `level` at pixel p of eye `eye` (local column xl).
+bool upsample(int level, int eye, int xl, int y, float z, out vec3 value) {
+    int blocks = pc.blocks[level - 1], rows = pc.heights[level - 1];
+    float scale = float(1 << level);
+    vec2 f = (vec2(xl, y) + 0.5) / scale - 0.5;
+    ivec2 i0 = ivec2(floor(f));
+    vec2 t = f - vec2(i0);
+    vec3 sum = vec3(0.0);
+    float wsum = 0.0;
+    for (int k = 0; k < 4; ++k) {
+        ivec2 o = ivec2(k & 1, k >> 1);
+        ivec2 q = clamp(i0 + o, ivec2(0), ivec2(blocks - 1, rows - 1));  // inside the eye
+        vec4 m = mipFetch(level, ivec2(eye * blocks + q.x, q.y));
+        float w = (o.x == 1 ? t.x : 1.0 - t.x) * (o.y == 1 ? t.y : 1.0 - t.y) * depthWeight(m.a, z);
+        if (!(w > 0.0)) continue;
+        sum += w * m.rgb;
+        wsum += w;
+    }
+    if (!(wsum > 1e-6)) return false;
+    value = sum / wsum;
+    return true;
+}
+
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, pc.size))) return;
+    vec4 c = texelFetch(color, p, 0);
+    float n = countAt(p, c);
+    float z = texelFetch(depth, p, 0).r;
+    // Enough history, or no surface: untouched (bit-exact for finite values; NaN/Inf -> 0 so a
+    // bad value never leaves this pass).
+    if (!(n < pc.fixFrames) || !(z > 0.0) || isinf(z)) {
+        imageStore(result, p, sanitize(c));
+        return;
+    }
+    n = max(n, 0.0);
+    int eye = eyeOfPixel(p.x, pc.eyeWidth, pc.eyes);
+    int x0 = eye * pc.eyeWidth;
+    int x1 = eye == pc.eyes - 1 ? pc.size.x - 1 : x0 + pc.eyeWidth - 1;
+    vec3 fixedColor = sanitize(c).rgb;
+    if (pc.method == 0) {
+        int level = clamp(int(ceil(4.0 * (1.0 - n / pc.fixFrames))), 1, 4);  // fixFrames > 0 here
+        for (int l = level; l >= 1; --l) {
+            vec3 v;
+            if (upsample(l, eye, p.x - x0, p.y, z, v)) {
+                fixedColor = v;
+                break;
+            }
+        }
+    } else {
+        int stride = max(int(floor(pc.baseStride / (2.0 + n))), 1);
+        vec3 sum = fixedColor * (1.0 + n);
+        float wsum = 1.0 + n;
+        for (int j = -2; j <= 2; ++j)
+            for (int i = -2; i <= 2; ++i) {
+                if ((i == 0 && j == 0) || (abs(i) == 2 && abs(j) == 2)) continue;
+                ivec2 q = clamp(p + ivec2(i, j) * stride, ivec2(x0, 0), ivec2(x1, pc.size.y - 1));
+                vec4 s = sanitize(texelFetch(color, q, 0));
+                float w = depthWeight(texelFetch(depth, q, 0).r, z) *
+                          (1.0 + clamp(countAt(q, s), 0.0, 64.0));  // NaN: skipped below
+                if (!(w > 0.0)) continue;
+                sum += w * s.rgb;
+                wsum += w;
+            }
+        fixedColor = sum / wsum;  // wsum >= 1
+    }
+    imageStore(result, p, sanitize(vec4(fixedColor, c.a)));
+}

@@ -1,0 +1,115 @@
+#version 460
+// RecurrentBlur temporal accumulation (seed 004, the ReBLUR talk; specs §2 "Stage temporal"):
+// reproject the recurrent history (last frame's post-blurred output, a delay-1 edge from the
+// spatial node) with a 2x2 bilinear footprint whose taps are kept only when the previous surface
+// lies on the current pixel's plane (talk: "cut off if relative delta >= 0.5-1.5 %" of the
+// frustum size); the custom weights are bilinear x valid, renormalized over the valid taps
+// (talk: GetBilinearCustomWeights). The frame count N is the same weighted average of the taps'
+// counts plus one (never the max: a max would let one stale tap keep a disoccluded pixel's
+// history long), capped at maxFrames; the blend weight of the new frame is 1/(1+N), the talk's
+// "linear accumulation speed" (proof slide: a running mean up to the cap, then an EMA).
+// A firefly suppressor limits the new sample's luminance relative to the history's.
+#extension GL_GOOGLE_include_directive : require
+#include "common/color.glsl"
+#include "recurrent_blur/reblur_common.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+uniform sampler2D preblurred;  // this frame's pre-blurred radiance, a = h (normalized hit)
+uniform sampler2D history;     // last frame's post-blurred result, a = h (delay-1 edge)
+uniform sampler2D prev_geo;    // our own geometry of last frame: xyz position, w = N (-1 miss)
+uniform sampler2D normal;
+uniform sampler2D position;
+uniform sampler2D depth;
+uniform sampler2D motion;
+layout(rgba32f) uniform writeonly image2D accumulated;  // rgb accumulated, a = N
+layout(r32f) uniform writeonly image2D hit;             // accumulated normalized hit distance
+layout(rgba32f) uniform writeonly image2D geo;          // xyz position, w = N (-1: no surface)
+
+layout(push_constant) uniform Params {
+    ivec2 size;
+    int eyeWidth;
+    int eyes;
+    float tanHalfFov;
+    int useHistory;      // 0: first frame, reset, camera cut (history invalid)
+    int useMotion;       // 0: no motion input (still camera)
+    float maxFrames;     // cap of N (talk: "< 32"; NRD 30)
+    float threshold;     // disocclusion: plane distance as a fraction of the frustum size
+    int firefly;         // 1: firefly suppression on
+    float maxBlurRadius; // strength of the firefly suppressor grows with it (specs §2)
+} pc;
+
+vec3 unitNormal(vec4 n) {
+    float l = length(n.xyz);
+    return l > 1e-8 && !isnan(l) && !isinf(l) ? n.xyz / l : vec3(0.0, 0.0, 1.0);
+}
+
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, pc.size))) return;
+    ivec2 lo, hi;
+    eyeBounds(p, pc.size, pc.eyeWidth, pc.eyes, lo, hi);
+
+    vec4 c = sanitize(texelFetch(preblurred, p, 0));  // finite already; cheap insurance
+    float z = texelFetch(depth, p, 0).r;
+    vec3 x = texelFetch(position, p, 0).xyz;
+    if (!(z > 0.0) || any(isnan(x)) || any(isinf(x))) {
+        // No surface: nothing to accumulate; every output is still written.
+        imageStore(accumulated, p, vec4(c.rgb, 0.0));
+        imageStore(hit, p, vec4(1.0));
+        imageStore(geo, p, vec4(0.0, 0.0, 0.0, -1.0));
+        return;
+    }
+    vec3 nrm = unitNormal(texelFetch(normal, p, 0));
+    float frustum = frustumSize(pc.tanHalfFov, z);  // > 0
+
+    float n = 0.0;
+    vec4 h = c;  // no history: the frame alone
+    if (pc.useHistory != 0) {
+        vec2 mv = pc.useMotion != 0 ? texelFetch(motion, p, 0).xy : vec2(0.0);
+        if (any(isnan(mv)) || any(isinf(mv))) mv = vec2(1e9);  // off-screen: no history
+        vec2 f = vec2(p) + mv;  // previous position of the pixel centre, minus 0.5
+        ivec2 i0 = ivec2(floor(f));
+        vec2 t = f - vec2(i0);
+        vec4 sum = vec4(0.0);
+        float nsum = 0.0, wsum = 0.0;
+        for (int k = 0; k < 4; ++k) {
+            ivec2 o = ivec2(k & 1, k >> 1);
+            ivec2 q = i0 + o;
+            // In the same eye (never across the seam) and on screen.
+            if (any(lessThan(q, lo)) || any(greaterThan(q, hi))) continue;
+            float wb = (o.x == 1 ? t.x : 1.0 - t.x) * (o.y == 1 ? t.y : 1.0 - t.y);
+            vec4 g = texelFetch(prev_geo, q, 0);
+            if (!(g.w >= 0.0)) continue;  // no surface there last frame (or NaN)
+            // Plane distance of the previous surface to this pixel's plane.
+            if (!(abs(dot(nrm, g.xyz - x)) <= pc.threshold * frustum)) continue;
+            float w = wb;
+            if (!(w > 0.0)) continue;
+            sum += w * sanitize(texelFetch(history, q, 0));
+            nsum += w * min(g.w, pc.maxFrames);
+            wsum += w;
+        }
+        if (wsum > 1e-6) {  // 1e-6: a footprint that barely touches a valid tap is not history
+            h = sum / wsum;
+            n = min(nsum / wsum + 1.0, pc.maxFrames);
+        }
+    }
+    float a = 1.0 / (1.0 + n);  // the talk's linear accumulation speed
+
+    vec3 cur = c.rgb;
+    if (pc.firefly != 0 && n > 0.0) {
+        // Firefly suppressor (specs §2): the new sample's luminance may exceed the history's by
+        // at most maxRel, applied with strength f = k / (1 + k), k = 0.1 N maxBlurRadius.
+        float y = luminance(cur), yh = max(luminance(h.rgb), 0.0);
+        float maxRel = 2.0 + 38.0 / (n + 1.0);
+        float k = 0.1 * n * pc.maxBlurRadius;
+        float fs = k / (1.0 + k);
+        float y2 = mix(y, min(y, yh * maxRel), fs);
+        if (y > 1e-20) cur *= y2 / y;  // guard: a black sample stays black
+    }
+    vec3 acc = mix(h.rgb, cur, a);
+    float hacc = clamp(mix(h.a, c.a, a), 0.0, 1.0);
+    imageStore(accumulated, p, sanitize(vec4(acc, n)));
+    imageStore(hit, p, vec4(hacc));
+    imageStore(geo, p, vec4(x, n));
+}
