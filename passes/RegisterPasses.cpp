@@ -11,6 +11,7 @@
 #include "passes/FoveationMask/FoveationMaskPass.h"
 #include "passes/GBuffer/GBufferPass.h"
 #include "passes/HistoryFix/HistoryFixPass.h"
+#include "passes/ImageFile/ImageFilePass.h"
 #include "passes/ImageSource/ImageSourcePass.h"
 #include "passes/PathTrace/PathTracePass.h"
 #include "passes/RecurrentBlur/RecurrentBlurPass.h"
@@ -32,6 +33,8 @@ void registerBuiltinPasses() {
     auto& r = graph::passRegistry();
     r.add(info<passes::ImageSourcePass>(
         "ImageSource", "Synthetic image: constant, gradient, seeded noise or the frame index."));
+    r.add(info<passes::ImageFilePass>(
+        "ImageFile", "Your own EXR/PNG image or numbered sequence (frame%04d.exr), by channel."));
     r.add(info<passes::TonemapPass>(
         "Tonemap", "Linear HDR to 8-bit display colour: exposure, clamp/Reinhard/ACES, sRGB."));
     r.add(info<passes::AccumulatePass>(

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "apps/fovea/Bench.h"
+#include "apps/fovea/CliChecks.h"
 #include "apps/fovea/Commands.h"
 #include "apps/fovea/GraphRunner.h"
 #include "apps/fovea/Progress.h"
@@ -22,8 +23,11 @@ void addBenchCommand(CLI::App& app, BenchOptions& o) {
     auto* cmd = app.add_subcommand(
         "bench", "run several graphs and compare run time against error (docs/bench.md)");
     cmd->add_option("bench", o.file, "bench file (JSON)")->required();
-    cmd->add_option("--out", o.out, "output directory for bench.json/.csv/.md/.svg")->required();
-    cmd->add_option("--device", o.device, "GPU index or name substring (default: best available)");
+    cmd->add_option("--out", o.out, "output directory for bench.json/.csv/.md/.svg")
+        ->required()
+        ->check(nonEmptyValue());
+    cmd->add_option("--device", o.device, "GPU index or name substring (default: best available)")
+        ->check(nonEmptyValue());
     cmd->add_flag("--validation", o.validation, "enable the Vulkan validation layer");
     cmd->add_flag("--overwrite", o.overwrite,
                   "allow writing into a non-empty output directory (a cached rendered reference "

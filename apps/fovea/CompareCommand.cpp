@@ -5,6 +5,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "apps/fovea/CliChecks.h"
 #include "apps/fovea/Commands.h"
 #include "core/image/ImageMetrics.h"
 
@@ -18,9 +19,9 @@ void addCompareCommand(CLI::App& app, CompareOptions& o) {
     cmd->add_option("reference", o.reference, "reference image of the same size")->required();
     cmd->add_flag("--json", o.json, "print the metrics as one JSON object");
     cmd->add_option("--peak", o.peak, "signal peak for PSNR and SSIM (default 1 = [0,1] images)")
-        ->check(CLI::PositiveNumber);
+        ->check(finitePositive());
     cmd->add_option("--epsilon", o.epsilon, "relMSE epsilon: (x-y)^2 / (y^2 + epsilon)")
-        ->check(CLI::PositiveNumber);
+        ->check(finitePositive());
 }
 
 int compareCommand(const CompareOptions& o) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "apps/fovea/CliChecks.h"
 #include "apps/fovea/Commands.h"
 #include "apps/fovea/GraphRunner.h"
 #include "apps/fovea/Progress.h"
@@ -22,12 +23,14 @@ void addReferenceCommand(CLI::App& app, ReferenceOptions& o) {
                     "reference graph (default: graphs/reference.json of this source tree)");
     cmd->add_option("--spp", o.spp, "samples per pixel in total (default 1024)")
         ->check(CLI::Range(1, 1 << 24));
-    cmd->add_option("--size", o.run.graph.size, "render size WIDTHxHEIGHT (default: the graph's)");
-    cmd->add_option("--out", o.run.out, "output directory (default: out/reference/<scene>)");
+    cmd->add_option("--size", o.run.graph.size, "render size WIDTHxHEIGHT (default: the graph's)")
+        ->check(nonEmptyValue());
+    cmd->add_option("--out", o.run.out, "output directory (default: out/reference/<scene>)")
+        ->check(nonEmptyValue());
     cmd->add_option("--set", o.run.graph.sets, "override a parameter: pass.param=value");
-    cmd->add_option("--seed", o.run.seed, "random seed (default 0)")
-        ->check(CLI::Range(int64_t(0), std::numeric_limits<int64_t>::max()));
-    cmd->add_option("--device", o.run.device, "GPU index or name substring");
+    cmd->add_option("--seed", o.run.seed, "random seed (default 0)")->check(nonNegativeInt64());
+    cmd->add_option("--device", o.run.device, "GPU index or name substring")
+        ->check(nonEmptyValue());
     cmd->add_flag("--validation", o.run.validation, "enable the Vulkan validation layer");
     cmd->add_flag("--overwrite", o.run.overwrite, "allow writing into a non-empty directory");
     cmd->add_flag("--quiet", o.run.quiet, "no progress bar");

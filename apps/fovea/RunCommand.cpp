@@ -1,14 +1,19 @@
 // `fovea run`: compile a graph, run N frames headless, write marked outputs and report.json.
+#include <atomic>
 #include <chrono>
+#include <csignal>
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <optional>
 #include <set>
 #include <sstream>
 
+#include "apps/fovea/CliChecks.h"
 #include "apps/fovea/Commands.h"
 #include "apps/fovea/GraphRunner.h"
+#include "apps/fovea/OutputFolder.h"
 #include "apps/fovea/Progress.h"
 #include "apps/fovea/ReferenceErrors.h"
 #include "apps/fovea/Report.h"
@@ -27,23 +32,28 @@ void addRunCommand(CLI::App& app, RunOptions& o) {
     cmd->add_option("graph", o.graph.graph, "graph file (JSON)")->required();
     cmd->add_option("--frames", o.frames, "number of frames (default: graph default or 1)")
         ->check(CLI::Range(1, std::numeric_limits<int>::max()));  // 0 is the "default" marker
-    cmd->add_option("--size", o.graph.size, "render size WIDTHxHEIGHT (default: graph or 256x256)");
-    cmd->add_option("--out", o.out, "output directory (default: out/<graph name>)");
+    cmd->add_option("--size", o.graph.size, "render size WIDTHxHEIGHT (default: graph or 256x256)")
+        ->check(nonEmptyValue());
+    cmd->add_option("--out", o.out, "output directory (default: out/<graph name>)")
+        ->check(nonEmptyValue());
     cmd->add_option("--set", o.graph.sets, "override a parameter: pass.param=value (repeatable)");
     cmd->add_option("--seed", o.seed, "random seed (default: graph default or 0)")
-        ->check(CLI::Range(int64_t(0), std::numeric_limits<int64_t>::max()));  // -1: "default"
+        ->check(nonNegativeInt64());  // -1: "default"
     cmd->add_option("--save-frames", o.saveFrames,
                     "frames whose outputs are written: 'last', 'all', 'none' or a list '0,3,7'");
-    cmd->add_option("--device", o.device, "GPU index or name substring (default: best available)");
+    cmd->add_option("--device", o.device, "GPU index or name substring (default: best available)")
+        ->check(nonEmptyValue());
     cmd->add_flag("--validation", o.validation, "enable the Vulkan validation layer");
     cmd->add_flag("--no-aliasing", o.graph.noAliasing, "give every transient image its own memory");
     cmd->add_flag("--overwrite", o.overwrite, "allow writing into a non-empty output directory");
     cmd->add_flag("--quiet", o.quiet, "no progress on stderr");
     cmd->add_option("--reference", o.reference,
                     "reference EXR (all frames) or directory of per-frame EXRs (*frameNNNN*.exr): "
-                    "per-frame errors go into report.json");
+                    "per-frame errors go into report.json")
+        ->check(nonEmptyValue());
     cmd->add_option("--reference-output", o.referenceOutput,
-                    "graph output compared with --reference (default: the first float output)");
+                    "graph output compared with --reference (default: the first float output)")
+        ->check(nonEmptyValue());
     addSceneOptions(*cmd, o.scene);
 }
 
@@ -82,6 +92,41 @@ std::set<uint32_t> parseSaveFrames(const std::string& text, uint32_t frames) {
     return out;
 }
 
+// SIGINT/SIGTERM during the frames: finish the frame and its writes, then write report.json with
+// "finished": false and exit 1. A second signal kills at once (the default action).
+volatile std::sig_atomic_t gInterruptSignal = 0;
+
+extern "C" void onInterrupt(int signal) {
+    gInterruptSignal = signal;
+    std::signal(signal, SIG_DFL);
+}
+
+// Restores the previous handlers when the frames are over.
+class InterruptGuard {
+public:
+    InterruptGuard() {
+        gInterruptSignal = 0;
+        mInt = std::signal(SIGINT, onInterrupt);
+        mTerm = std::signal(SIGTERM, onInterrupt);
+    }
+    ~InterruptGuard() {
+        std::signal(SIGINT, mInt);
+        std::signal(SIGTERM, mTerm);
+    }
+    int signal() const { return gInterruptSignal; }
+
+private:
+    void (*mInt)(int) = SIG_DFL;
+    void (*mTerm)(int) = SIG_DFL;
+};
+
+bool allBlack(const image::ImageRGBA& img) {
+    for (size_t i = 0; i + 3 < img.pixels.size(); i += 4)
+        if (img.pixels[i] != 0.0f || img.pixels[i + 1] != 0.0f || img.pixels[i + 2] != 0.0f)
+            return false;
+    return true;
+}
+
 }  // namespace
 
 void checkOutputDir(const fs::path& dir, const std::string& option, bool overwrite) {
@@ -104,8 +149,9 @@ int runCommand(const RunOptions& o) {
     std::optional<gpu::Context> device;
     RunScene scene(o.scene, desc);
     std::set<uint32_t> save = parseSaveFrames(o.saveFrames, frames);
-    fs::path outDir =
-        o.out.empty() ? fs::path("out") / (desc.name.empty() ? "run" : desc.name) : fs::path(o.out);
+    scene.checkRenderSize(width);
+    // The graph's free-text name must not pick a folder outside out/ ("../x", "/abs").
+    fs::path outDir = o.out.empty() ? fs::path("out") / safeFolderName(desc.name) : fs::path(o.out);
     checkOutputDir(outDir, "--out", o.overwrite);
     if (!o.referenceOutput.empty() && o.reference.empty())
         throw InputError("--reference-output", "", "needs --reference");
@@ -123,11 +169,16 @@ int runCommand(const RunOptions& o) {
         reference ? selectComparedOutput(runner, o.referenceOutput, "--reference-output") : "";
     if (reference) reference->choose(compared);
     FrameErrors errors;
-    fs::create_directories(outDir);
+    const OutputFolder folder(outDir, "--out", o.overwrite);
+    InterruptGuard interrupt;
 
     ReportInputs report = runner.reportBase(o.graph.graph, frames);
     Progress progress(frames, o.samplesPerFrame, o.quiet);
-    for (uint32_t f = 0; f < frames; ++f) {
+    uint32_t framesDone = 0;
+    // Outputs of the last saved frame that are black in every pixel (RGB): a camera that sees no
+    // geometry or no light gives such an image with exit 0, which must not pass unnoticed.
+    std::map<std::string, uint32_t> blackOutputs;
+    for (uint32_t f = 0; f < frames && !interrupt.signal(); ++f) {
         graph::FrameTiming t = runner.runFrame();
         report.frameGpuMs.push_back(t.gpuMs);
         report.frameCpuMs.push_back(t.recordCpuMs);
@@ -146,18 +197,26 @@ int runCommand(const RunOptions& o) {
                     base += suffix;
                 }
                 image::ImageRGBA img = runner.download(name);
-                image::writeExr(outDir / (base + ".exr"), img);
+                folder.write(base + ".exr",
+                             [&](const fs::path& path) { image::writeExr(path, img); });
                 // An 8-bit UNORM output (e.g. Tonemap's) is display-encoded already.
                 const bool displayEncoded =
                     gpu::formatIsUnorm8(runner.graph().image(name).format());
-                image::writePng(
-                    outDir / (base + ".png"), img,
-                    displayEncoded ? image::PngEncoding::AsIs : image::PngEncoding::Srgb);
+                folder.write(base + ".png", [&](const fs::path& path) {
+                    image::writePng(
+                        path, img,
+                        displayEncoded ? image::PngEncoding::AsIs : image::PngEncoding::Srgb);
+                });
                 report.outputs.push_back(base + ".exr");
                 report.outputs.push_back(base + ".png");
+                if (allBlack(img))
+                    blackOutputs[name] = f;
+                else
+                    blackOutputs.erase(name);
             }
         }
         progress.update(f + 1);
+        framesDone = f + 1;
     }
     progress.finish();
     checkValidation(ctx);
@@ -167,7 +226,25 @@ int runCommand(const RunOptions& o) {
         report.reference["mode"] = reference->perFrame() ? "per-frame" : "single";
         report.reference["output"] = compared;
     }
-    std::ofstream(outDir / "report.json") << buildReport(runner.graph(), report).dump(2) << "\n";
+    // Written last: its presence and "finished" say whether the folder is complete.
+    nlohmann::json json = buildReport(runner.graph(), report);
+    json["warnings"] = nlohmann::json::array();
+    for (const auto& [name, frame] : blackOutputs) {
+        const std::string warning =
+            "output '" + name + "' is black in every pixel (frame " + std::to_string(frame) +
+            "): the camera may see no geometry or no light (--camera frame frames the scene)";
+        json["warnings"].push_back(warning);
+        std::cerr << "fovea: warning: " << warning << "\n";
+    }
+    json["finished"] = framesDone == frames;
+    json["frames_run"] = framesDone;
+    folder.writeText("report.json", json.dump(2) + "\n");
+    if (interrupt.signal()) {
+        std::cerr << "error: interrupted (signal " << interrupt.signal() << ") after " << framesDone
+                  << " of " << frames << " frames; " << (outDir / "report.json").string()
+                  << " says \"finished\": false\n";
+        return kExitRuntime;
+    }
     if (!o.quiet) std::cerr << "fovea: wrote " << (outDir / "report.json").string() << "\n";
     return kExitOk;
 }

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "apps/fovea/CliChecks.h"
 #include "core/graph/Pass.h"
 #include "core/scene/SceneGpu.h"
 #include "core/scene/SceneLoader.h"
@@ -54,18 +55,23 @@ scene::CameraDesc gltfCamera(const scene::Scene& s, const std::string& which) {
 void addSceneOptions(CLI::App& cmd, SceneOptions& o) {
     cmd.add_option("--scene", o.scene,
                    "scene: builtin:<name> or a .gltf/.glb file; 'none' for none (default: the "
-                   "graph's defaults.scene)");
+                   "graph's defaults.scene)")
+        ->check(nonEmptyValue());
     cmd.add_option("--camera", o.camera,
-                   "camera path JSON (docs/camera-path.md) or gltf:<index|name> (default: the "
-                   "graph's defaults.camera, else the scene's first camera, else a camera framing "
-                   "the scene)");
+                   "camera path JSON (docs/camera-path.md), gltf:<index|name>, or 'frame' (a "
+                   "camera framing the scene) (default: the graph's defaults.camera unless "
+                   "--scene replaces its scene, else the scene's first camera, else 'frame')")
+        ->check(nonEmptyValue());
     cmd.add_flag("--stereo", o.stereo, "side-by-side stereo rig (seed 000 §3.1)");
     cmd.add_flag("--mono", o.mono, "one eye, even if the graph defaults to stereo");
     cmd.add_option("--ipd", o.ipd, "interpupillary distance in scene units (default 0.064)")
-        ->check(CLI::Range(0.0f, 10.0f));
+        ->check(finiteRange(0.0, 10.0));
     cmd.add_option("--gaze", o.gaze,
                    "gaze point in [0,1]^2 of each eye's image: x,y or xl,yl,xr,yr (default: the "
-                   "centre; a camera path may override it per key)");
+                   "centre; a camera path may override it per key)")
+        ->check(nonEmptyValue());
+    cmd.add_flag("--allow-external-uris", o.allowExternalUris,
+                 "let a glTF file read buffers/images outside its folder (absolute paths, ../)");
     cmd.add_flag("--jitter", o.jitter, "Halton (2,3) sub-pixel jitter per frame (for TAA)");
     cmd.add_flag("--sun", o.sun,
                  "add a white directional light (3 lux from above) to the scene, e.g. for glTF "
@@ -99,8 +105,15 @@ RunScene::RunScene(const SceneOptions& o, const graph::GraphDesc& desc) {
     mRig.ipd = o.ipd;
     mRig.jitter = o.jitter;
     if (!o.gaze.empty()) mGaze = parseGaze(o.gaze);
+    // The graph's defaults.camera was made for its default scene: with another --scene it would
+    // look at nothing (an all-black image), so it is dropped with a warning.
+    const std::string defaultScene = relativeToGraph(desc.defaults.scene.value_or("none"), desc);
+    const bool sceneOverridden = !o.scene.empty() && spec != defaultScene;
+    const bool graphCamera = o.camera.empty() && desc.defaults.camera && !o.ignoreGraphCamera;
+    std::string droppedCamera;
+    if (graphCamera && sceneOverridden) droppedCamera = *desc.defaults.camera;
     std::string camera = !o.camera.empty() ? o.camera
-                         : desc.defaults.camera && !o.ignoreGraphCamera
+                         : graphCamera && droppedCamera.empty()
                              ? relativeToGraph(*desc.defaults.camera, desc)
                              : std::string();
     if (spec == "none") {
@@ -109,7 +122,7 @@ RunScene::RunScene(const SceneOptions& o, const graph::GraphDesc& desc) {
     }
     auto t0 = std::chrono::steady_clock::now();
     try {
-        mScene = std::make_unique<scene::Scene>(scene::loadScene(spec));
+        mScene = std::make_unique<scene::Scene>(scene::loadScene(spec, o.allowExternalUris));
     } catch (const InputError& e) {
         if (!o.scene.empty()) throw InputError("--scene", "", e.what());
         throw InputError(desc.file, "/defaults/scene", e.what());
@@ -130,11 +143,26 @@ RunScene::RunScene(const SceneOptions& o, const graph::GraphDesc& desc) {
             "the scene has no light (no emissive material, no "
             "KHR_lights_punctual light): path-traced images will be black; "
             "--sun adds a directional light");
-    if (camera.rfind("gltf:", 0) == 0) {
+    if (!droppedCamera.empty())
+        mScene->warnings.push_back("the graph's defaults.camera '" + droppedCamera +
+                                   "' belongs to its default scene '" + defaultScene +
+                                   "' and is not used with --scene " + spec +
+                                   " (pass --camera to choose one; --camera frame frames the "
+                                   "scene)");
+    if (camera == kFrameCamera) {
+        mPath = scene::CameraPath::still(mScene->defaultCamera());
+        mCameraSource = "default";
+    } else if (camera.rfind("gltf:", 0) == 0) {
         mPath = scene::CameraPath::still(gltfCamera(*mScene, camera.substr(5)));
         mCameraSource = camera;
     } else if (!camera.empty()) {
-        mPath = scene::CameraPath::load(camera);
+        try {
+            mPath = scene::CameraPath::load(camera);
+        } catch (const InputError& e) {
+            // Reached through the graph: say which graph field named the file.
+            if (o.camera.empty()) throw InputError(desc.file, "/defaults/camera", e.what());
+            throw;
+        }
         mCameraSource = "path:" + camera;
     } else if (!mScene->cameras.empty()) {
         mPath = scene::CameraPath::still(mScene->cameras.front());
@@ -146,6 +174,14 @@ RunScene::RunScene(const SceneOptions& o, const graph::GraphDesc& desc) {
 }
 
 RunScene::~RunScene() = default;
+
+void RunScene::checkRenderSize(uint32_t width) const {
+    if (mRig.stereo && width < 2)
+        throw InputError("--size", "",
+                         "stereo renders two eyes of width/2 side by side: the width must be at "
+                         "least 2, got " +
+                             std::to_string(width));
+}
 
 uint32_t RunScene::features() const {
     if (!mScene) return 0;

@@ -23,8 +23,10 @@ class SceneGpu;
 namespace fovea::app {
 
 struct SceneOptions {
-    std::string scene;   // empty: the graph's defaults.scene, else none; "none" = no scene
-    std::string camera;  // camera path JSON, or "gltf:<index|name>"; empty: graph default
+    std::string scene;  // empty: the graph's defaults.scene, else none; "none" = no scene
+    // camera path JSON, "gltf:<index|name>" or "frame"; empty: graph default (dropped when --scene
+    // replaces the graph's scene)
+    std::string camera;
     bool stereo = false, mono = false;  // --stereo / --mono override defaults.stereo
     float ipd = 0.064f;
     std::string gaze;  // "x,y" (both eyes) or "xl,yl,xr,yr"; empty = each eye's centre
@@ -35,7 +37,12 @@ struct SceneOptions {
     // fovea bench: ignore the graph's defaults.camera (the bench file names the camera, and
     // without one the scene's still camera is used for every graph).
     bool ignoreGraphCamera = false;
+    // --allow-external-uris: glTF buffers/images outside the scene's folder may be read.
+    bool allowExternalUris = false;
 };
+
+// `--camera frame`: a camera framing the scene's bounds (Scene::defaultCamera).
+inline constexpr const char* kFrameCamera = "frame";
 
 // Adds the options above to a subcommand.
 void addSceneOptions(CLI::App& cmd, SceneOptions& o);
@@ -51,6 +58,8 @@ public:
     RunScene(const SceneOptions& options, const graph::GraphDesc& desc);
     ~RunScene();
 
+    // Throws InputError naming --size when the render width leaves an eye without pixels.
+    void checkRenderSize(uint32_t width) const;
     bool hasScene() const { return mScene != nullptr; }
     const std::string& spec() const { return mSpec; }  // "none" without a scene
     uint32_t features() const;                         // graph::SceneFeature bits (CPU side)

@@ -1,7 +1,9 @@
 // `fovea validate`: run every CPU compile stage (no device needed) and optionally dump the plan.
 #include <chrono>
 #include <iostream>
+#include <nlohmann/json.hpp>
 
+#include "apps/fovea/CliChecks.h"
 #include "apps/fovea/Commands.h"
 #include "core/graph/CompilerStages.h"
 
@@ -10,7 +12,8 @@ namespace fovea::app {
 void addValidateCommand(CLI::App& app, ValidateOptions& o) {
     auto* cmd = app.add_subcommand("validate", "check a graph file without running it");
     cmd->add_option("graph", o.graph.graph, "graph file (JSON)")->required();
-    cmd->add_option("--size", o.graph.size, "render size WIDTHxHEIGHT for size checks");
+    cmd->add_option("--size", o.graph.size, "render size WIDTHxHEIGHT for size checks")
+        ->check(nonEmptyValue());
     cmd->add_option("--set", o.graph.sets, "override a parameter: pass.param=value (repeatable)");
     cmd->add_flag("--no-aliasing", o.graph.noAliasing, "plan without memory aliasing");
     cmd->add_flag("--dump", o.dump,
@@ -29,6 +32,13 @@ int validateCommand(const ValidateOptions& o) {
     options.aliasing = !o.graph.noAliasing;
     // The scene is loaded on the CPU only: its features decide which passes are culled.
     RunScene scene(o.scene, desc);
+    scene.checkRenderSize(width);
+    // The same scene warnings `run` prints (no light, ignored glTF features, dropped camera).
+    if (scene.hasScene()) {
+        const nlohmann::json sceneJson = scene.json();  // a range-for over a temporary's member
+        for (const auto& w : sceneJson.at("warnings"))  // would dangle
+            std::cerr << "fovea: warning: " << w.get<std::string>() << "\n";
+    }
     options.sceneFeatures = scene.features();
     auto t0 = std::chrono::steady_clock::now();
     graph::CompiledPlan plan = graph::compileGraphPlan(desc, graph::passRegistry(), options);

@@ -7,6 +7,7 @@
 #include "core/graph/PassRegistry.h"
 #include "core/util/DidYouMean.h"
 #include "core/util/Error.h"
+#include "core/util/JsonUtil.h"
 #include "passes/RegisterPasses.h"
 
 namespace {
@@ -74,10 +75,11 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("bench")) return benchCommand(bench);
         if (app.got_subcommand("inspect")) return inspectCommand(inspect);
     } catch (const fovea::InputError& e) {
-        std::cerr << "error: " << e.what() << "\n";
+        // Quoted user text (a pass type, a key) is cut at 200 characters: one readable line.
+        std::cerr << "error: " << fovea::shortenQuotedSpans(e.what()) << "\n";
         return kExitInput;
     } catch (const std::exception& e) {
-        std::cerr << "error: " << e.what() << "\n";
+        std::cerr << "error: " << fovea::shortenQuotedSpans(e.what()) << "\n";
         return kExitRuntime;
     }
     return kExitInput;

@@ -73,4 +73,48 @@ ImageRGBA readImage(const std::filesystem::path& path) {
     return image;
 }
 
+ImageRGBA readImageChannels(const std::filesystem::path& path,
+                            const std::vector<std::string>& channels) {
+    if (channels.empty()) return readImage(path);
+    if (channels.size() > 4)
+        throw InputError(path.string(), "", "at most 4 channels can be selected");
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto in = OIIO::ImageInput::open(path.string(), &config);
+    if (!in) throw InputError(path.string(), "", "cannot read image: " + OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+        throw InputError(path.string(), "", "image has no pixels");
+    std::vector<int> index;
+    for (const std::string& name : channels) {
+        int found = spec.channelindex(name);
+        if (found < 0) {
+            std::string list;
+            for (const auto& n : spec.channelnames) list += (list.empty() ? "" : ", ") + n;
+            throw InputError(path.string(), "",
+                             "no channel '" + name + "' (channels: " + list + ")");
+        }
+        index.push_back(found);
+    }
+    const int all = spec.nchannels;
+    std::vector<float> raw(size_t(spec.width) * spec.height * all);
+    if (!in->read_image(0, 0, 0, all, OIIO::TypeDesc::FLOAT, raw.data()))
+        throw InputError(path.string(), "", "cannot decode image: " + in->geterror());
+    ImageRGBA image;
+    image.width = uint32_t(spec.width);
+    image.height = uint32_t(spec.height);
+    image.pixels.assign(size_t(image.width) * image.height * 4, 0.0f);
+    for (size_t p = 0; p < size_t(image.width) * image.height; ++p) {
+        for (size_t c = 0; c < 4; ++c) {
+            float v = c == 3 ? 1.0f : 0.0f;
+            if (index.size() == 1 && c < 3)
+                v = raw[p * all + size_t(index[0])];
+            else if (c < index.size())
+                v = raw[p * all + size_t(index[c])];
+            image.pixels[p * 4 + c] = v;
+        }
+    }
+    return image;
+}
+
 }  // namespace fovea::image

@@ -29,5 +29,10 @@ void writePng(const std::filesystem::path& path, const ImageRGBA& image,
 // (a PNG's colour is not premultiplied by its alpha).
 // Throws InputError naming the file when it cannot be read.
 ImageRGBA readImage(const std::filesystem::path& path);
+// readImage with channel selection: `channels` (at most 4) name the file's channels read as
+// r, g, b, a (missing alpha 1, missing g/b 0; one channel is replicated to r, g, b); empty = as
+// readImage. An unknown name is an InputError naming the file and listing its channels.
+ImageRGBA readImageChannels(const std::filesystem::path& path,
+                            const std::vector<std::string>& channels);
 
 }  // namespace fovea::image

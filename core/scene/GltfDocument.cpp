@@ -182,4 +182,11 @@ GltfDocument readGltfDocument(const std::filesystem::path& path) {
     return doc;
 }
 
+bool uriLeavesFolder(const std::string& decoded) {
+    const std::filesystem::path path(decoded);
+    if (path.is_absolute() || path.has_root_name() || path.has_root_directory()) return true;
+    const std::filesystem::path normal = path.lexically_normal();
+    return !normal.empty() && *normal.begin() == "..";
+}
+
 }  // namespace fovea::scene::gltf

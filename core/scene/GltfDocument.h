@@ -21,7 +21,17 @@ struct GltfDocument {
     bool isGlb = false;
     std::optional<std::vector<uint8_t>> glbBin;  // the GLB's BIN chunk, if it has one
     std::vector<std::string> warnings;           // e.g. bytes after the end of a GLB
+    // Buffer and image URIs may name files outside the scene's folder (GltfLoadOptions).
+    bool allowExternalUris = false;
 };
+
+// True when a percent-decoded relative URI names a file outside the folder it is resolved in:
+// an absolute path, a root name, or ".." climbing above it ("../../../../etc/shadow").
+bool uriLeavesFolder(const std::string& decoded);
+// The message for such a URI (no size or content of the file is echoed: it is never opened).
+inline constexpr const char* kExternalUriMessage =
+    "refers to a file outside the scene's folder; not read (pass --allow-external-uris to allow "
+    "it)";
 
 // Throws InputError(file, "", ...) for unreadable files, broken GLB containers and bad JSON.
 GltfDocument readGltfDocument(const std::filesystem::path& path);

@@ -66,6 +66,12 @@ inline uint64_t elementBytes(std::string_view type, uint64_t componentType) {
 constexpr uint64_t kMaxAccessorElements = uint64_t(1) << 24;  // 16.7M
 constexpr uint64_t kMaxSceneTriangles = uint64_t(1) << 26;
 constexpr uint64_t kMaxSceneVertices = uint64_t(1) << 27;
+// Largest |coordinate| of a vertex after its node transform, and largest emission (factor x
+// strength). 32-bit floats hold 3.4e38, but bounds extents, BVH surface areas (squared lengths)
+// and variance/regression terms (squared radiance) overflow long before: sqrt(3.4e38) = 1.8e19,
+// and 1e15 leaves four orders of magnitude for sums over pixels and frames.
+constexpr double kMaxSceneCoordinate = 1e15;
+constexpr double kMaxEmission = 1e15;
 
 // a * b + c, false on overflow.
 inline bool mulAdd(uint64_t a, uint64_t b, uint64_t c, uint64_t& out) {

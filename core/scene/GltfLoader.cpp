@@ -142,6 +142,7 @@ void buildScene(const gltf::GltfDocument& doc, const tinygltf::Model& model, con
 Scene loadGltf(const std::filesystem::path& path, const GltfLoadOptions& options,
                GltfLoadReport* report) {
     gltf::GltfDocument doc = gltf::readGltfDocument(path);
+    doc.allowExternalUris = options.allowExternalUris;
     Scene scene;
     scene.source = doc.file;
     scene.warnings = doc.warnings;

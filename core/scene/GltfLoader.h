@@ -20,6 +20,9 @@ struct GltfLoadOptions {
     // data is then used, and therefore checked. Off for rendering: glTF draws only what the
     // scene's nodes reference.
     bool drawEveryMesh = false;
+    // Read buffer/image files outside the scene file's folder (absolute paths, "../"). Off by
+    // default: a downloaded scene must not make fovea open /etc/shadow (`--allow-external-uris`).
+    bool allowExternalUris = false;
 };
 
 // What a load used, for tests that compare fovea's verdict with an external validator's report.

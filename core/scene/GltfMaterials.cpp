@@ -1,7 +1,9 @@
 #include "core/scene/GltfMaterials.h"
 
 #include <algorithm>
+#include <cstdio>
 
+#include "core/scene/GltfLayout.h"
 #include "core/scene/GltfTextures.h"
 #include "core/util/Error.h"
 
@@ -94,7 +96,18 @@ Material MaterialTable::convert(size_t index) {
                                 "/emissiveFactor: above 1 (outside the glTF range); kept as an "
                                 "HDR emission");
         }
-        m.emissive = glm::vec3(factor * strength);
+        // 1e39 became +inf in 32 bits and 1e30 overflows once squared (variance, regression):
+        // the image came out black with exit 0. Emission is capped like scene coordinates.
+        const glm::dvec3 emission = factor * strength;
+        const double largest = std::max({emission.x, emission.y, emission.z});
+        if (!(largest <= kMaxEmission)) {
+            char value[32];
+            std::snprintf(value, sizeof value, "%g", largest);
+            throw InputError(mDoc.file, pointer + "/emissiveFactor",
+                             std::string("emission (emissiveFactor x emissiveStrength) of ") +
+                                 value + " is above 1e15: it overflows 32-bit float radiance sums");
+        }
+        m.emissive = glm::vec3(emission);
     }
     if (src.alphaMode != "OPAQUE") {
         mWarnings.push_back(pointer + "/alphaMode: " + src.alphaMode +

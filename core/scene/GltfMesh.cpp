@@ -1,6 +1,8 @@
 #include "core/scene/GltfMesh.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/scene/GltfAccessor.h"
 #include "core/scene/GltfLayout.h"
@@ -144,6 +146,18 @@ void appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t prim
             throw InputError(
                 file, pointer,
                 "vertex " + std::to_string(i) + " is not finite after the node transform");
+        }
+        // A finite vertex at 3e38 still overflows the scene bounds (extent 6e38), BVH areas and
+        // ray distances in 32-bit floats: the image came out black with exit 0.
+        const double largest = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+        if (largest > kMaxSceneCoordinate) {
+            char value[32];
+            std::snprintf(value, sizeof value, "%g", largest);
+            throw InputError(file, "/accessors/" + std::to_string(positionAccessor),
+                             "POSITION of vertex " + std::to_string(i) + " is at " + value +
+                                 " after the node transform (" + pointer +
+                                 "): coordinates beyond 1e15 overflow the 32-bit float bounds, "
+                                 "BVH and ray distances");
         }
     }
     auto uvAt = [&](size_t i) {

@@ -59,6 +59,10 @@ bool rawBufferBytes(const GltfDocument& doc, uint64_t index, std::vector<uint8_t
         error = "malformed URI";
         return false;
     }
+    if (!doc.allowExternalUris && uriLeavesFolder(decoded)) {
+        error = kExternalUriMessage;
+        return false;
+    }
     return readRegularFile(doc.baseDir / decoded, kMaxGltfFileBytes, out, error);
 }
 
@@ -80,6 +84,10 @@ bool encodedImage(const GltfDocument& doc, const tinygltf::Model* model, size_t 
         std::string decoded;
         if (!percentDecode(*uri, decoded) || decoded.empty()) {
             error = "malformed URI";
+            return false;
+        }
+        if (!doc.allowExternalUris && uriLeavesFolder(decoded)) {
+            error = kExternalUriMessage;
             return false;
         }
         std::filesystem::path path = doc.baseDir / decoded;

@@ -87,6 +87,10 @@ void validateBuffer(const GltfJson& gltf, const GltfDocument& doc, size_t index)
         buffer.issueAt("uri", "malformed URI");
         return;
     }
+    if (!doc.allowExternalUris && uriLeavesFolder(decoded)) {
+        buffer.issueAt("uri", kExternalUriMessage);
+        return;
+    }
     std::filesystem::path file = doc.baseDir / decoded;
     std::error_code ec;
     if (!std::filesystem::is_regular_file(file, ec)) {

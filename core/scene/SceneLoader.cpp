@@ -10,7 +10,7 @@
 
 namespace fovea::scene {
 
-Scene loadScene(const std::string& spec) {
+Scene loadScene(const std::string& spec, bool allowExternalUris) {
     if (spec.rfind("builtin:", 0) == 0) return loadBuiltinScene(spec);
     if (spec.empty())
         throw InputError("", "", "no scene given (a .gltf/.glb path or builtin:<name>)");
@@ -30,7 +30,9 @@ Scene loadScene(const std::string& spec) {
         throw InputError(
             spec, "", std::filesystem::exists(path, ec) ? "not a regular file" : "file not found");
     }
-    return loadGltf(path);
+    GltfLoadOptions options;
+    options.allowExternalUris = allowExternalUris;
+    return loadGltf(path, options);
 }
 
 }  // namespace fovea::scene

@@ -9,6 +9,7 @@ namespace fovea::scene {
 
 // Throws InputError naming the spec/file for unknown built-ins, unsupported extensions,
 // unreadable files and every glTF problem (see GltfLoader.h).
-Scene loadScene(const std::string& spec);
+// `allowExternalUris`: see GltfLoadOptions.
+Scene loadScene(const std::string& spec, bool allowExternalUris = false);
 
 }  // namespace fovea::scene

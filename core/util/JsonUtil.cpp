@@ -45,6 +45,30 @@ std::string jsonPointerAppend(const std::string& base, size_t index) {
     return base + "/" + std::to_string(index);
 }
 
+std::string truncateForMessage(std::string_view text, size_t maxChars) {
+    if (text.size() <= maxChars) return std::string(text);
+    size_t cut = maxChars;
+    while (cut > 0 && (uint8_t(text[cut]) & 0xC0) == 0x80) --cut;  // not inside a UTF-8 sequence
+    return std::string(text.substr(0, cut)) + "\u2026";
+}
+
+std::string shortenQuotedSpans(std::string_view message, size_t maxChars) {
+    std::string out;
+    size_t i = 0;
+    while (i < message.size()) {
+        const size_t open = message.find('\'', i);
+        if (open == std::string_view::npos) break;
+        const size_t close = message.find('\'', open + 1);
+        if (close == std::string_view::npos) break;
+        out.append(message.substr(i, open + 1 - i));
+        out += truncateForMessage(message.substr(open + 1, close - open - 1), maxChars);
+        out += '\'';
+        i = close + 1;
+    }
+    if (i < message.size()) out.append(message.substr(i));
+    return truncateForMessage(out, 16 * maxChars);
+}
+
 std::string jsonTypeName(const nlohmann::json& value) {
     switch (value.type()) {
         case nlohmann::json::value_t::null:
@@ -98,18 +122,25 @@ std::string describeParseError(const std::string& what) {
 }
 
 // Tracks where the parser is, so a duplicate key can be reported with the pointer of its object.
+// It also bounds the nesting depth: nlohmann parses iteratively, but copying or walking a value
+// nested 70,000 levels deep (graph params, glTF extras seen by tinygltf) recurses and overflows
+// the stack, so such a file is refused while it is parsed.
 class DuplicateKeyDetector {
 public:
+    explicit DuplicateKeyDetector(const std::string& file) : mFile(file) {}
+
     bool onEvent(nlohmann::json::parse_event_t event, const nlohmann::json& parsed) {
         using Event = nlohmann::json::parse_event_t;
         switch (event) {
             case Event::object_start:
-                beginElement();
-                mStack.emplace_back(true);
-                break;
             case Event::array_start:
+                if (mStack.size() >= kMaxJsonDepth)
+                    throw InputError(mFile, currentPointer(),
+                                     "JSON nested deeper than " + std::to_string(kMaxJsonDepth) +
+                                         " levels (refused: deeper values would exhaust the "
+                                         "stack)");
                 beginElement();
-                mStack.emplace_back(false);
+                mStack.emplace_back(event == Event::object_start);
                 break;
             case Event::object_end:
             case Event::array_end:
@@ -150,6 +181,24 @@ private:
         if (!mStack.empty() && !mStack.back().isObject) ++mStack.back().count;
     }
 
+public:
+    // Pointer of the value being parsed now (the member after the last key, or the next element
+    // of the innermost array); "" at the root. Truncated: a key may be megabytes long.
+    std::string currentPointer() const {
+        std::string pointer;
+        for (size_t i = 0; i < mStack.size() && pointer.size() <= kMaxPointerChars; ++i) {
+            const Frame& frame = mStack[i];
+            const bool top = i + 1 == mStack.size();
+            pointer = frame.isObject
+                          ? jsonPointerAppend(pointer, frame.key)
+                          : jsonPointerAppend(pointer, top ? frame.count : frame.count - 1);
+        }
+        return truncateForMessage(pointer, kMaxPointerChars);
+    }
+
+private:
+    static constexpr size_t kMaxPointerChars = 200;
+
     // Pointer of the innermost (top) container.
     std::string pointerBelowTop() const {
         std::string pointer;
@@ -161,6 +210,7 @@ private:
         return pointer;
     }
 
+    std::string mFile;
     std::vector<Frame> mStack;
     bool mDuplicateFound = false;
     std::string mDuplicateKey;
@@ -170,7 +220,7 @@ private:
 }  // namespace
 
 nlohmann::json parseJsonText(std::string_view text, const std::string& file) {
-    DuplicateKeyDetector detector;
+    DuplicateKeyDetector detector(file);
     nlohmann::json root;
     try {
         root = nlohmann::json::parse(
@@ -184,6 +234,13 @@ nlohmann::json parseJsonText(std::string_view text, const std::string& file) {
         throw InputError(file, "",
                          "line " + std::to_string(at.line) + ", column " +
                              std::to_string(at.column) + ": " + describeParseError(e.what()));
+    } catch (const nlohmann::json::out_of_range& e) {
+        // 406: a number beyond double ("1e400"); the parser stopped at the value being read.
+        std::string what = e.what();
+        if (size_t bracket = what.find("] "); bracket != std::string::npos)
+            what.erase(0, bracket + 2);
+        throw InputError(file, detector.currentPointer(),
+                         truncateForMessage(what, 200) + " (the number does not fit a double)");
     }
     if (detector.found()) {
         throw InputError(file, detector.pointer(), "duplicate key '" + detector.key() + "'");

@@ -35,9 +35,22 @@ std::string jsonPointerAppend(const std::string& base, size_t index);
 // "null", "boolean", "number", "string", "array", "object" — the words used in type errors.
 std::string jsonTypeName(const nlohmann::json& value);
 
+// Deepest nesting of objects/arrays parseJsonText accepts (graphs and glTF files need < 20).
+constexpr size_t kMaxJsonDepth = 256;
+
+// `text` cut to at most `maxChars` bytes (on a UTF-8 boundary) followed by "…" when longer: for
+// echoing user text in error messages (a 10 MB pass type must not make a 10 MB line).
+std::string truncateForMessage(std::string_view text, size_t maxChars = 200);
+
+// Every '...'-quoted span of `message` longer than `maxChars` cut with truncateForMessage (the
+// closing quote kept), then the whole message cut at 16 * maxChars: error lines echo user text.
+std::string shortenQuotedSpans(std::string_view message, size_t maxChars = 200);
+
 // Parses `text`, turning syntax errors into InputError(file, "", "line L, column C: ...") and
-// rejecting duplicate object keys (nlohmann would silently keep the last one, hiding a typo'd
-// copy-paste) as InputError(file, <pointer of the object>, "duplicate key 'k'").
+// rejecting nesting deeper than kMaxJsonDepth and numbers beyond double ("1e400") as
+// InputError(file, <pointer>, ...), and rejecting duplicate object keys (nlohmann would silently
+// keep the last one, hiding a typo'd copy-paste) as InputError(file, <pointer of the object>,
+// "duplicate key 'k'").
 nlohmann::json parseJsonText(std::string_view text, const std::string& file);
 
 // A JSON value together with where it came from. Accessors check the type and throw InputError

@@ -8,6 +8,7 @@
 #include "core/graph/PassRegistry.h"
 #include "editor/GraphLayout.h"
 #include "editor/PreviewImage.h"
+#include "passes/RegisterPasses.h"
 
 namespace fovea::editor {
 namespace {

@@ -8,6 +8,7 @@
 #include "core/graph/Pass.h"
 #include "core/graph/PassRegistry.h"
 #include "editor/ParamWidgets.h"
+#include "passes/RegisterPasses.h"
 
 namespace fovea::editor {
 namespace {

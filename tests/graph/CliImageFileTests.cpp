@@ -1,0 +1,112 @@
+// ImageFile (passes/ImageFile, docs/passes/ImageFile.md) through the executable: an EXR sequence
+// written by `fovea run` read back exactly, channel selection, the shipped denoise graph, and
+// exit-2 errors naming the file (wrong size, missing frame, unknown channel, bad pattern).
+#include "core/util/Error.h"
+#include "passes/ImageFile/ImageFilePass.h"
+#include "tests/graph/CliTestUtil.h"
+
+using namespace fovea::clitest;
+
+namespace {
+
+const fs::path kPathTraceGraph = kRepo / "graphs" / "pathtrace.json";
+const fs::path kDenoiseGraph = kRepo / "graphs" / "denoise_exr_sequence.json";
+
+// Two frames of 1 spp path tracing of the Cornell box, 32x32: seq/pt.radiance.frame000{0,1}.exr.
+fs::path writeSequence(const TempDir& tmp) {
+    const fs::path seq = tmp / "seq";
+    Result r = cli({"run", kPathTraceGraph.string(), "--out", seq.string(), "--size", "32x32",
+                    "--frames", "2", "--save-frames", "all", "--quiet"});
+    EXPECT_EQ(r.code, 0) << r.describe();
+    return seq;
+}
+
+// A graph whose only output is the ImageFile pass's image.
+fs::path copyGraph(const TempDir& tmp, const std::string& path, const std::string& channels) {
+    const fs::path graph = tmp / "copy.json";
+    writeText(graph, R"({"version": 1, "name": "copy", "passes": [{"name": "src",
+        "type": "ImageFile", "params": {"path": ")" +
+                         path + R"(", "channels": ")" + channels +
+                         R"("}}], "outputs": ["src.color"]})");
+    return graph;
+}
+
+}  // namespace
+
+TEST(ImageFilePattern, FormatsOneIntegerConversion) {
+    using fovea::passes::formatFramePattern;
+    EXPECT_EQ(formatFramePattern("f%04d.exr", 7, "x"), "f0007.exr");
+    EXPECT_EQ(formatFramePattern("f%d.exr", 12345, "x"), "f12345.exr");
+    EXPECT_EQ(formatFramePattern("f%3d.exr", 5, "x"), "f  5.exr");
+    EXPECT_EQ(formatFramePattern("100%%_%02d.png", 3, "x"), "100%_03.png");
+    EXPECT_EQ(formatFramePattern("still.exr", 9, "x"), "still.exr");
+    for (const char* bad : {"f%s.exr", "f%d_%d.exr", "f%", "f%x", "f%999999999999d"})
+        EXPECT_THROW(formatFramePattern(bad, 1, "x"), fovea::InputError) << bad;
+}
+
+TEST(CliImageFile, ReadsASequenceExactlyAndSelectsChannels) {
+    TempDir tmp;
+    const fs::path seq = writeSequence(tmp);
+    const std::string pattern = (seq / "pt.radiance.frame%04d.exr").string();
+
+    Result r = cli({"run", copyGraph(tmp, pattern, "").string(), "--out", (tmp / "a").string(),
+                    "--size", "32x32", "--frames", "2", "--save-frames", "all", "--quiet"});
+    ASSERT_EQ(r.code, 0) << r.describe();
+    for (const char* frame : {"frame0000", "frame0001"}) {
+        const std::vector<float> in = pixels(seq / ("pt.radiance." + std::string(frame) + ".exr"));
+        const std::vector<float> out =
+            pixels(tmp / "a" / ("src.color." + std::string(frame) + ".exr"));
+        EXPECT_EQ(in, out) << frame;
+    }
+    EXPECT_NE(pixels(seq / "pt.radiance.frame0000.exr"), pixels(seq / "pt.radiance.frame0001.exr"))
+        << "the two frames must differ for the test to tell them apart";
+
+    // Channels B,G,R: red of the output is blue of the file; alpha 1.
+    Result swapped = cli({"run", copyGraph(tmp, pattern, "B,G,R").string(), "--out",
+                          (tmp / "b").string(), "--size", "32x32", "--frames", "1", "--quiet"});
+    ASSERT_EQ(swapped.code, 0) << swapped.describe();
+    const std::vector<float> in = pixels(seq / "pt.radiance.frame0000.exr");
+    const std::vector<float> out = pixels(tmp / "b" / "src.color.exr");
+    ASSERT_EQ(in.size(), out.size());
+    for (size_t p = 0; p < in.size(); p += 4) {
+        ASSERT_EQ(out[p], in[p + 2]) << p;
+        ASSERT_EQ(out[p + 2], in[p]) << p;
+        ASSERT_EQ(out[p + 3], 1.0f) << p;
+    }
+}
+
+TEST(CliImageFile, ShippedDenoiseGraphRunsOnAFoveaSequence) {
+    TempDir tmp;
+    const fs::path seq = writeSequence(tmp);
+    Result r = cli({"run", kDenoiseGraph.string(), "--out", (tmp / "d").string(), "--size", "32x32",
+                    "--frames", "2", "--set",
+                    "src.path=" + (seq / "pt.radiance.frame%04d.exr").string(), "--quiet"});
+    ASSERT_EQ(r.code, 0) << r.describe();
+    const std::vector<float> noisy = pixels(seq / "pt.radiance.frame0001.exr");
+    const std::vector<float> denoised = pixels(tmp / "d" / "denoise.denoised.frame0001.exr");
+    ASSERT_EQ(noisy.size(), denoised.size());
+    EXPECT_NE(noisy, denoised) << "ATrousNH changed nothing";
+    EXPECT_TRUE(fs::exists(tmp / "d" / "tm.ldr.frame0001.png"));
+}
+
+TEST(CliImageFile, BadFilesAreInputErrorsNamingTheFile) {
+    TempDir tmp;
+    const fs::path seq = writeSequence(tmp);
+    const std::string pattern = (seq / "pt.radiance.frame%04d.exr").string();
+    const std::string graph = copyGraph(tmp, pattern, "").string();
+    auto run = [&](std::vector<std::string> extra) {
+        std::vector<std::string> args = {"run",     graph,        "--out", (tmp / "o").string(),
+                                         "--quiet", "--overwrite"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        return cli(args);
+    };
+    expectInputError(run({"--size", "16x16", "--frames", "1"}),
+                     {(seq / "pt.radiance.frame0000.exr").string(), "32x32", "16x16"});
+    expectInputError(run({"--size", "32x32", "--frames", "3"}),
+                     {(seq / "pt.radiance.frame0002.exr").string()});
+    expectInputError(run({"--size", "32x32", "--set", "src.channels=albedo.R"}),
+                     {"pt.radiance.frame0000.exr", "no channel 'albedo.R'", "R, G, B, A"});
+    expectInputError(run({"--size", "32x32", "--set", "src.path=" + (seq / "x%s").string()}),
+                     {"src", "frame pattern"});
+    expectInputError(run({"--size", "32x32", "--set", "src.path="}), {"src", "'path' is empty"});
+}
