@@ -45,9 +45,24 @@ CameraDesc Scene::defaultCamera() const {
     if (!(radius > 0.0f) || !std::isfinite(radius)) radius = 1.0f;
     // The sphere of radius r seen from distance d fills the vertical FOV when r / d = sin(fov/2).
     float distance = radius / std::sin(0.5f * camera.yfov);
-    camera.position = center + glm::vec3(0.0f, 0.0f, distance);
+    // Look the way the scene's own first camera looks, if it has one: a room (the Cornell box)
+    // is authored to be seen from its open side, and a view from another side sees a closed wall.
+    // Without a camera: from +z towards -z (glTF's default camera orientation).
+    glm::vec3 direction(0.0f, 0.0f, -1.0f), up(0.0f, 1.0f, 0.0f);
+    if (!cameras.empty()) {
+        const glm::vec3 d = cameras.front().target - cameras.front().position;
+        const float length = glm::length(d);
+        // A degenerate camera (target on the eye, non-finite) keeps the default direction.
+        if (length > 0.0f && std::isfinite(length)) {
+            direction = d / length;
+            const glm::vec3 u = cameras.front().up;
+            if (glm::length(glm::cross(u, direction)) > 1e-3f) up = glm::normalize(u);
+            else up = std::abs(direction.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, -1);
+        }
+    }
+    camera.position = center - direction * distance;
     camera.target = center;
-    camera.up = glm::vec3(0.0f, 1.0f, 0.0f);
+    camera.up = up;
     // The near plane scales with the scene (mm and m files alike) and stays in front of it.
     camera.znear = std::max(1e-3f * radius, 1e-6f);
     return camera;

@@ -481,4 +481,27 @@ TEST(SceneFeatures, DefaultCameraFramesTheBounds) {
     EXPECT_LT(c.znear, distance - radius);
 }
 
+// `--camera frame` on a scene with its own camera looks the way that camera looks (the Cornell
+// box is open towards its camera: framing it from +z saw the closed back wall, a black image).
+TEST(SceneFeatures, DefaultCameraLooksLikeTheScenesCamera) {
+    const Scene cornell = loadBuiltinScene("builtin:cornell");
+    ASSERT_FALSE(cornell.cameras.empty());
+    const CameraDesc c = cornell.defaultCamera();
+    const glm::vec3 own = glm::normalize(cornell.cameras[0].target - cornell.cameras[0].position);
+    const glm::vec3 framed = glm::normalize(c.target - c.position);
+    EXPECT_GT(glm::dot(own, framed), 0.9999f);
+    EXPECT_EQ(c.target, cornell.bounds.center());
+    // The whole bounding sphere is in front of the camera.
+    const float radius = 0.5f * glm::length(cornell.bounds.extent());
+    EXPECT_GT(glm::length(c.target - c.position), radius);
+    // A degenerate scene camera (target on the eye) falls back to the default direction.
+    Scene s;
+    s.bounds.grow(glm::vec3(0.0f));
+    s.bounds.grow(glm::vec3(2.0f));
+    CameraDesc broken;
+    broken.position = broken.target = glm::vec3(1.0f);
+    s.cameras.push_back(broken);
+    EXPECT_GT(s.defaultCamera().position.z, 1.0f);
+}
+
 }  // namespace
