@@ -13,6 +13,7 @@
 #include "passes/ImageSource/ImageSourcePass.h"
 #include "passes/PathTrace/PathTracePass.h"
 #include "passes/Remodulate/RemodulatePass.h"
+#include "passes/SVGF/SVGFPass.h"
 #include "passes/SampleList/SampleListPass.h"
 #include "passes/TAA/TAAPass.h"
 #include "passes/Tonemap/TonemapPass.h"
@@ -69,6 +70,10 @@ void registerBuiltinPasses() {
         "BMFR",
         "Blockwise multi-order feature regression (seed 003 P2 §3): accumulation, 32x32 block "
         "QR fit of [1, n, w, w^2], second accumulation, remodulation; numerically guarded."));
+    r.add(info<passes::SVGFPass>(
+        "SVGF",
+        "Spatiotemporal variance-guided filtering (Schied et al. 2017): moments, "
+        "variance, a-trous with edge stopping, remodulation."));
 }
 
 }  // namespace fovea
