@@ -2,7 +2,8 @@
 // pixels it reveals and leaves the others' history bit-exact; NaN/+-Inf in every input never
 // reach the outputs or the history and are counted; a 1e4 firefly stays bounded and keeps the
 // frame mean; a camera cut every frame restarts cleanly; a reprojection that rejects everything
-// restarts every pixel.
+// restarts every pixel; the history length is the weighted average of the kept taps (never the
+// max), border pixels included.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -189,4 +190,39 @@ TEST_F(SVGFStress, AllRejectedReprojectionRestartsEveryPixel) {
         ASSERT_EQ(acc[i * 4 + 3], in.depth[i * 4] > 0.0f ? 1.0f : 0.0f) << i;
     EXPECT_EQ(h.stats()[2], hits);
     ASSERT_TRUE(allFinite(h.read("filtered")));
+}
+
+TEST_F(SVGFStress, HistoryLengthIsTheWeightedAverageOfTheKeptTaps) {
+    // A plane with positions 0.01 apart (well inside positionThreshold 0.02 * 4): three frames
+    // give h = 3 everywhere; in the 4th the left half (x < 8) is rejected (motion out of the
+    // image), so h = 1 there and 4 on the right; in the 5th every pixel moves half a pixel
+    // (motion +0.5): pixel 7 straddles taps 7 (h 1) and 8 (h 4) with weights 1/2 each.
+    // Weighted average: 2.5 + 1 = 3.5 (a max would give 5, the nearest tap 2 or 5).
+    const int size = 16;
+    SvgfInputs in = occluderScene(size, -1, 1);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            in.position[in.at(x, y)] = 0.01f * float(x);
+            in.position[in.at(x, y) + 1] = 0.01f * float(y);
+        }
+    SvgfHarness h(ctx(), in, "{}");
+    for (int f = 0; f < 3; ++f) h.runFrame();
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < 8; ++x) in.motion[in.at(x, y)] = 1000.0f;
+    h.upload(in);
+    h.runFrame();
+    auto acc = h.read("accumulated");
+    ASSERT_EQ(acc[in.at(7, 5) + 3], 1.0f);
+    ASSERT_EQ(acc[in.at(8, 5) + 3], 4.0f);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) in.motion[in.at(x, y)] = 0.5f;
+    h.upload(in);
+    h.runFrame();
+    acc = h.read("accumulated");
+    EXPECT_EQ(acc[in.at(7, 5) + 3], 3.5f);
+    EXPECT_EQ(acc[in.at(3, 5) + 3], 2.0f);   // taps 3, 4 both h = 1
+    EXPECT_EQ(acc[in.at(10, 5) + 3], 5.0f);  // taps 10, 11 both h = 4
+    // The border pixel's second tap is outside the image: the kept one's weight is renormalized
+    // (border pixels accumulate like the rest).
+    EXPECT_EQ(acc[in.at(15, 5) + 3], 5.0f);
 }
