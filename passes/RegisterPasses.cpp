@@ -16,6 +16,7 @@
 #include "passes/PathTrace/PathTracePass.h"
 #include "passes/RecurrentBlur/RecurrentBlurPass.h"
 #include "passes/Remodulate/RemodulatePass.h"
+#include "passes/SVGF/SVGFPass.h"
 #include "passes/SampleList/SampleListPass.h"
 #include "passes/TAA/TAAPass.h"
 #include "passes/Tonemap/TonemapPass.h"
@@ -82,6 +83,10 @@ void registerBuiltinPasses() {
         "HistoryFix",
         "Seed 004: rebuild pixels with few accumulated frames from a mip pyramid (or NRD's "
         "strided 5x5); the others pass bit-exactly. Follows any temporal accumulation."));
+    r.add(info<passes::SVGFPass>(
+        "SVGF",
+        "Spatiotemporal variance-guided filtering (Schied et al. 2017): moments, "
+        "variance, a-trous with edge stopping, remodulation."));
 }
 
 }  // namespace fovea

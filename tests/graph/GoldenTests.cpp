@@ -189,6 +189,15 @@ TEST_F(GoldenTest, BMFRHistoryFix) {
     EXPECT_TRUE(fovea::test::goldenMatches(ctx(), spec));
 }
 
+TEST_F(GoldenTest, SVGF) {
+    // Schied et al. 2017 in P2's configuration (graphs/svgf.json): 1 spp, SVGF, TAA; four frames
+    // so that the moments, the temporal variance (h = 4) and the TAA history are exercised.
+    GoldenSpec spec = cornellGolden("svgf", "graphs/svgf.json", false);
+    spec.width = spec.height = 64;
+    spec.frames = 4;
+    EXPECT_TRUE(fovea::test::goldenMatches(ctx(), spec));
+}
+
 TEST_F(GoldenTest, Chain20) {
     // 18 chained Combines of animated noise (aliased transients), tonemapped to rgba8.
     EXPECT_TRUE(fovea::test::goldenMatches(ctx(), golden("chain20", "graphs/tests/chain20.json")));

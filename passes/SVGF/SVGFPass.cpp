@@ -1,0 +1,194 @@
+#include "passes/SVGF/SVGFPass.h"
+
+#include "core/vk/Barriers.h"
+#include "core/vk/ComputePipeline.h"
+
+namespace fovea::passes {
+
+namespace {
+constexpr uint32_t kStatCount = 5;  // svgf_common.glsl SVGF_STAT_*
+}  // namespace
+
+SVGFPass::SVGFPass() = default;
+SVGFPass::~SVGFPass() = default;
+
+void SVGFPass::params(graph::ParamVisitor& v) {
+    v.add("iterations", mIterations, 5,
+          "a-trous levels; level i steps 2^i pixels (Schied et al. 2017 §4.3: 5)", {1.0f, 8.0f});
+    v.add("feedbackTap", mFeedbackTap, 1,
+          "which level's output becomes the colour history: 1 = after the first level (§4.1, "
+          "the paper), k = after level k, 0 = the unfiltered temporal accumulation. (Falcor's "
+          "FeedbackTap counts from 0: its default 1 is our 2.) At most `iterations`",
+          {0.0f, 8.0f});
+    v.add("alpha", mAlpha, 0.2f,
+          "colour: minimum weight of the new sample, used as max(alpha, 1/h): the exact running "
+          "mean while 1/h >= alpha, then an EMA (§4.1: 0.2)",
+          {0.001f, 1.0f});
+    v.add("momentsAlpha", mMomentsAlpha, 0.2f,
+          "luminance moments: the same for the first and second moment (§4.2: 0.2)",
+          {0.001f, 1.0f});
+    v.add("sigmaLuminance", mSigmaLuminance, 4.0f,
+          "sigma_l of the luminance edge-stopping function, in standard deviations of the "
+          "prefiltered variance (§4.4, Eq. 5: 4; Falcor 10)",
+          {1e-3f, 1e6f});
+    v.add("sigmaNormal", mSigmaNormal, 128.0f,
+          "sigma_n: exponent of max(0, n_p . n_q) (§4.4, Eq. 4: 128); 0 turns the term off",
+          {0.0f, 1e4f});
+    v.add("sigmaDepth", mSigmaDepth, 1.0f,
+          "sigma_z: depth difference allowed, in units of the screen-space depth gradient times "
+          "the tap offset (§4.4, Eq. 3: 1)",
+          {0.0f, 1e6f});
+    v.add("historyForVariance", mHistoryForVariance, 4.0f,
+          "history length below which the variance is estimated spatially (§4.2: 4 frames)",
+          {0.0f, 256.0f});
+    v.add("spatialRadius", mSpatialRadius, 3,
+          "radius of the spatial variance estimate: (2r+1)^2 pixels (§4.2: 7x7)", {0.0f, 8.0f});
+    v.add("maxHistory", mMaxHistory, 32.0f,
+          "cap of the history length h (specs §1: 32); with alpha 0.2 only the variance "
+          "fallback and the output `accumulated` see it",
+          {1.0f, 4096.0f});
+    v.add("positionThreshold", mPositionThreshold, 0.02f,
+          "disocclusion: a history tap is rejected when its world position is farther than this "
+          "times the pixel's view depth (as BMFR)",
+          {0.0f, 1e6f});
+    v.add("normalThreshold", mNormalThreshold, 0.9f,
+          "disocclusion: a history tap is rejected when the cosine between its normal and the "
+          "pixel's is below this",
+          {-1.0f, 1.0f});
+}
+
+void SVGFPass::reflect(graph::Reflection& r) const {
+    const auto any = vk::Format::eUndefined;
+    r.input("color", any)
+        .screen()
+        .floatOnly()
+        .doc("noisy albedo-demodulated radiance (PathTrace `demodulated`), a = samples (0 = none)");
+    r.input("position", any).screen().floatOnly().doc("world position, w > 0 on a hit");
+    r.input("normal", any).screen().floatOnly().doc("shading normal (unit length)");
+    r.input("depth", any).screen().floatOnly().doc("linear view depth, 0 = miss (GBuffer `depth`)");
+    r.input("albedo", any).screen().floatOnly().optional().doc("remodulation albedo; open: 1");
+    r.input("emission", any)
+        .screen()
+        .floatOnly()
+        .optional()
+        .doc("emission added back after remodulation; open: 0");
+    r.input("motion", any)
+        .screen()
+        .floatOnly()
+        .optional()
+        .doc("previous pixel - current pixel; open: reproject positions through the camera");
+
+    const auto rgba32 = vk::Format::eR32G32B32A32Sfloat;
+    r.output("filtered", rgba32).doc("final colour: last level remodulated, a = 1");
+    r.output("illumination", rgba32).doc("last level, demodulated; a = propagated variance");
+    r.output("accumulated", rgba32)
+        .doc("temporal accumulation (demodulated); a = history length h");
+    r.output("stats", any)
+        .buffer(kStatCount * sizeof(uint32_t))
+        .persistent()
+        .doc(
+            "uint[5] since the last reset: non-finite colour samples, non-finite geometry/motion "
+            "pixels, rejected reprojections, spatial-variance pixels, negative-variance clamps");
+    // Pass-declared histories (prev_hist_* in the shaders): docs/passes/SVGF.md.
+    r.internal("hist_color", rgba32).history().doc("colour after level `feedbackTap`");
+    r.internal("hist_moments", vk::Format::eR32G32Sfloat)
+        .history()
+        .doc("luminance moments (mu1, mu2), fp32: l^2 overflows fp16 above l = 256");
+    r.internal("hist_length", vk::Format::eR32Sfloat).history().doc("history length h");
+    r.internal("hist_position", rgba32).history().doc("world position (disocclusion test)");
+    r.internal("hist_normal", vk::Format::eR16G16B16A16Sfloat)
+        .history()
+        .doc("normal (disocclusion test)");
+    r.internal("atrous_a", rgba32).doc("a-trous ping-pong: rgb colour, a = variance");
+    r.internal("atrous_b", rgba32).doc("a-trous ping-pong: rgb colour, a = variance");
+}
+
+void SVGFPass::validate(const graph::ValidateContext& ctx) const {
+    if (mFeedbackTap > mIterations)
+        ctx.fail("feedbackTap", "must be at most `iterations` (" + std::to_string(mIterations) +
+                                    "): there is no level " + std::to_string(mFeedbackTap));
+}
+
+void SVGFPass::compile(graph::CompileContext& ctx) {
+    mUseMotion = ctx.connected("motion");
+    mUseAlbedo = ctx.connected("albedo");
+    mUseEmission = ctx.connected("emission");
+    mReproject = ctx.createPipeline("svgf/reproject.comp");
+    mVariance = ctx.createPipeline("svgf/variance.comp", {}, {"atrous_out"});
+    mATrous = ctx.createPipeline("svgf/atrous.comp", {}, {"atrous_in", "atrous_out"});
+}
+
+void SVGFPass::execute(graph::ExecuteContext& ctx) {
+    const auto& cmd = ctx.cmd();
+    // Every history is written each frame, so one answers for all of them.
+    const bool history = ctx.historyValid("hist_length");
+    const auto& out = ctx.image("filtered");
+    const glm::ivec2 size(int(out.width()), int(out.height()));
+
+    if (!history) {
+        // Counters restart with the history (cumulative since the last reset or cut).
+        cmd.fillBuffer(ctx.buffer("stats").buffer(), 0, VK_WHOLE_SIZE, 0u);
+        gpu::memoryBarrier(
+            cmd, vk::PipelineStageFlagBits2::eTransfer, vk::AccessFlagBits2::eTransferWrite,
+            vk::PipelineStageFlagBits2::eComputeShader,
+            vk::AccessFlagBits2::eShaderStorageRead | vk::AccessFlagBits2::eShaderStorageWrite);
+    }
+
+    // §4.1 temporal accumulation.
+    ctx.bindFields(*mReproject);
+    mReproject->set("size", size)
+        .set("history", int(history))
+        .set("useMotion", int(mUseMotion))
+        .set("writeColorHistory", int(mFeedbackTap == 0))
+        .set("alpha", mAlpha)
+        .set("momentsAlpha", mMomentsAlpha)
+        .set("maxHistory", mMaxHistory)
+        .set("positionThreshold", mPositionThreshold)
+        .set("normalThreshold", mNormalThreshold);
+    mReproject->dispatch(cmd, out.width(), out.height());
+    gpu::computeToComputeBarrier(cmd);
+
+    // §4.2 variance estimate into the first ping-pong image.
+    const gpu::Image* ping = &ctx.image("atrous_a");
+    const gpu::Image* pong = &ctx.image("atrous_b");
+    ctx.bindFields(*mVariance);
+    mVariance->bind("atrous_out", *ping);
+    mVariance->set("size", size)
+        .set("radius", mSpatialRadius)
+        .set("historyForVariance", mHistoryForVariance)
+        .set("sigmaLuminance", mSigmaLuminance)
+        .set("sigmaNormal", mSigmaNormal)
+        .set("sigmaDepth", mSigmaDepth);
+    mVariance->dispatch(cmd, out.width(), out.height());
+
+    // §4.3 a-trous levels, step 2^i.
+    ctx.bindFields(*mATrous);
+    mATrous->set("size", size)
+        .set("useAlbedo", int(mUseAlbedo))
+        .set("useEmission", int(mUseEmission))
+        .set("sigmaLuminance", mSigmaLuminance)
+        .set("sigmaNormal", mSigmaNormal)
+        .set("sigmaDepth", mSigmaDepth);
+    for (int level = 0; level < mIterations; ++level) {
+        gpu::computeToComputeBarrier(cmd);
+        mATrous->bind("atrous_in", *ping).bind("atrous_out", *pong);
+        mATrous->set("stepSize", 1 << level)
+            .set("writeColorHistory", int(level + 1 == mFeedbackTap))
+            .set("last", int(level + 1 == mIterations));
+        mATrous->dispatch(cmd, out.width(), out.height());
+        std::swap(ping, pong);
+    }
+}
+
+nlohmann::json SVGFPass::statistics(const graph::StatisticsContext& ctx) const {
+    // The `stats` counters (docs/passes/SVGF.md#stats), since the last reset or camera cut.
+    const auto counts = ctx.buffer("stats").downloadAs<uint32_t>(ctx.gpu);
+    if (counts.size() < kStatCount) return nullptr;
+    return {{"nonfinite_color_samples", counts[0]},
+            {"nonfinite_geometry_pixels", counts[1]},
+            {"rejected_reprojections", counts[2]},
+            {"spatial_variance_pixels", counts[3]},
+            {"negative_variance_clamps", counts[4]}};
+}
+
+}  // namespace fovea::passes

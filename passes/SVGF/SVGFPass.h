@@ -1,0 +1,47 @@
+// SVGF: Spatiotemporal Variance-Guided Filtering (Schied et al., HPG 2017; notes in
+// ../shared/design/denoiser-specs.md §1). Temporal accumulation of the demodulated colour and of
+// the luminance moments with per-tap disocclusion tests (§4.1), a variance estimate that falls
+// back to a spatial one while the history is short (§4.2), `iterations` a-trous levels with
+// variance-guided luminance, normal and depth-gradient edge stopping (§4.3-4.4), the output of
+// level `feedbackTap` fed back as colour history, and remodulation by albedo (+ emission).
+// Documentation: docs/passes/SVGF.md.
+#pragma once
+#include <memory>
+
+#include "core/graph/Pass.h"
+
+namespace fovea::passes {
+
+class SVGFPass : public graph::Pass {
+public:
+    SVGFPass();
+    ~SVGFPass() override;
+
+    void params(graph::ParamVisitor& v) override;
+    void reflect(graph::Reflection& r) const override;
+    void validate(const graph::ValidateContext& ctx) const override;
+    void compile(graph::CompileContext& ctx) override;
+    void execute(graph::ExecuteContext& ctx) override;
+    nlohmann::json statistics(const graph::StatisticsContext& ctx) const override;
+
+private:
+    // Parameters (declared and documented once, in params()).
+    int mIterations = 5;
+    int mFeedbackTap = 1;
+    float mAlpha = 0.2f;
+    float mMomentsAlpha = 0.2f;
+    float mSigmaLuminance = 4.0f;
+    float mSigmaNormal = 128.0f;
+    float mSigmaDepth = 1.0f;
+    float mHistoryForVariance = 4.0f;
+    int mSpatialRadius = 3;
+    float mMaxHistory = 32.0f;
+    float mPositionThreshold = 0.02f;
+    float mNormalThreshold = 0.9f;
+
+    // State.
+    bool mUseMotion = false, mUseAlbedo = false, mUseEmission = false;
+    std::unique_ptr<gpu::ComputePipeline> mReproject, mVariance, mATrous;
+};
+
+}  // namespace fovea::passes
