@@ -58,7 +58,7 @@ VisualPolarGrid VisualPolarGrid::make(uint32_t width, uint32_t height, double fo
     VisualPolarGrid g;
     g.width = std::max(width, 1u);
     g.height = std::max(height, 1u);
-    g.foveaFraction = std::clamp(foveaFraction, 1e-3, 1.0);
+    g.foveaFraction = std::clamp(foveaFraction, kVisualPolarMinFoveaFraction, 1.0);
     g.foveaDegrees = acuityInverse(g.foveaFraction);
     return g;
 }

@@ -26,6 +26,10 @@ inline constexpr double kAcuityFlatDegrees = 5.79;
 inline constexpr double kAcuityMaxDegrees = 80.0;
 // P5 §3.2: rho_f such that the clipped triangle is 12 % of the space (rho_f / 2 = 0.12).
 inline constexpr double kVisualPolarFoveaFraction = 0.24;
+// Smallest rho_f: keeps the fovea edge (f^-1(0.1) = 9.5 degrees) beyond the flat part of the
+// acuity, where Eq. 2's two branches differ by 0.26 % (a small step down at 5.79 degrees): the
+// mapping then only uses the monotone tail of Eq. 2.
+inline constexpr double kVisualPolarMinFoveaFraction = 0.1;
 
 // Unnormalized CDF h(e) of P5 Eq. 2 (pi e^2 below 5.79 degrees, where the acuity is flat).
 double acuityCdfRaw(double e);

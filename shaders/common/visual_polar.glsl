@@ -130,7 +130,7 @@ VisualPolarMap vpMapOfEye(uint eye) {
     m.dMax = max(vp.eyes[min(eye, 1u)].z, 0.5);
     m.width = max(vp.grid.x, 1u);
     m.height = max(vp.grid.y, 1u);
-    m.foveaFraction = clamp(vp.fovea.x, 1e-3, 1.0);
+    m.foveaFraction = clamp(vp.fovea.x, 0.1, 1.0);  // kVisualPolarMinFoveaFraction
     m.foveaDegrees = max(vp.fovea.y, 1e-3);
     return m;
 }

@@ -31,8 +31,13 @@ double acuity(double e) {
 TEST(VisualPolar, Eq2ConstantsAndContinuity) {
     EXPECT_NEAR(acuityCdfRaw(80.0), 1091.31, 0.01);
     EXPECT_NEAR(acuityCdfRaw(5.79), std::numbers::pi * 5.79 * 5.79, 1e-9);
-    // Both branches meet at 5.79 degrees.
-    EXPECT_NEAR(acuityCdfRaw(5.79 + 1e-9), acuityCdfRaw(5.79), 1e-6);
+    // Finding: the branches do NOT meet exactly at 5.79 degrees (denoiser-specs §3 says they
+    // do): Eq. 2's tail gives 105.046 there, pi 5.79^2 = 105.319, a 0.26 % step down. The mapping
+    // never evaluates the flat branch (rho_f >= 0.1, i.e. the fovea edge lies beyond 9.5
+    // degrees), so the step cannot break its monotonicity; this pins the number.
+    EXPECT_NEAR(acuityCdfRaw(5.79) - acuityCdfRaw(5.79 + 1e-9), 0.2728, 1e-3);
+    EXPECT_GE(VisualPolarGrid::make(8, 8, 0.01).foveaFraction, kVisualPolarMinFoveaFraction);
+    EXPECT_GT(VisualPolarGrid::make(8, 8, kVisualPolarMinFoveaFraction).foveaDegrees, 5.79);
     EXPECT_NEAR(acuityCdf(5.79), 0.09651, 1e-5);
     EXPECT_DOUBLE_EQ(acuityCdf(80.0), 1.0);
     // The derivative is the radial pdf 2 pi e m(e) / h(80) (Eq. 2's 166.4 pi 0.09 = 2 pi 7.488
