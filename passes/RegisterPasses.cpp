@@ -16,6 +16,8 @@
 #include "passes/SampleList/SampleListPass.h"
 #include "passes/TAA/TAAPass.h"
 #include "passes/Tonemap/TonemapPass.h"
+#include "passes/Unwarp/UnwarpPass.h"
+#include "passes/VisualPolarWarp/VisualPolarWarpPass.h"
 
 namespace fovea {
 
@@ -69,6 +71,14 @@ void registerBuiltinPasses() {
         "BMFR",
         "Blockwise multi-order feature regression (seed 003 P2 §3): accumulation, 32x32 block "
         "QR fit of [1, n, w, w^2], second accumulation, remodulation; numerically guarded."));
+    r.add(info<passes::VisualPolarWarpPass>(
+        "VisualPolarWarp",
+        "Visual-Polar space (seed 003 P5 §3.2) per eye around its gaze: screen position of each "
+        "(rho, phi) texel's primary ray, fovea clip, the mapping block; cached per gaze/size."));
+    r.add(info<passes::UnwarpPass>(
+        "Unwarp",
+        "Visual-Polar image to the screen (P5 §3.4-3.5): phi-only mips, backward trilinear "
+        "mapping (wrap phi, clamp rho), separable foveated Gaussian blur."));
 }
 
 }  // namespace fovea

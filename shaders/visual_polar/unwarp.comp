@@ -1,0 +1,82 @@
+#version 460
+// Unwarp step 2 (seed 003 P5 §3.4): backward mapping. Every screen pixel finds its (rho, phi)
+// in its eye's Visual-Polar image and samples it: bilinear in rho between two columns (clamped
+// to the edge), in each column bilinear in phi at that column's own height, wrapped (hides the
+// phi seam); trilinear across the phi-only mips where one pixel covers several phi rows (the
+// fovea). The gaze pixel maps to rho ~ 0, t = 0: finite, never a division by zero.
+#extension GL_GOOGLE_include_directive : require
+
+#include "../common/camera.glsl"
+#define VISUAL_POLAR_PARAMS
+#include "../common/visual_polar.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+uniform sampler2D color;
+layout(rgba32f) uniform readonly image2D mip1;
+layout(rgba32f) uniform readonly image2D mip2;
+layout(rgba32f) uniform readonly image2D mip3;
+layout(rgba32f) uniform writeonly image2D unwarped;
+layout(rgba32f) uniform writeonly image2D result;
+
+layout(push_constant) uniform Params {
+    uint levels;    // 1..4
+    uint toResult;  // 1: write `result` (no blur follows), 0: `unwarped`
+} pc;
+
+vec4 loadLevel(uint level, ivec2 p) {
+    if (level == 0u) return texelFetch(color, p, 0);
+    if (level == 1u) return imageLoad(mip1, p);
+    if (level == 2u) return imageLoad(mip2, p);
+    return imageLoad(mip3, p);
+}
+
+// One column at its own phi height for this level; t wraps.
+vec4 columnSample(VisualPolarMap m, uint eye, uint column, float t, uint level) {
+    uint n = vpRowsAtLevel(m, column, level);  // >= 1
+    float y = fract(t) * float(n) - 0.5;
+    float j0f = floor(y);
+    float fy = y - j0f;
+    int j0 = int(j0f);
+    int a = (j0 % int(n) + int(n)) % int(n);
+    int b = (a + 1) % int(n);
+    int x = int(eye * m.width + column);
+    return mix(loadLevel(level, ivec2(x, a)), loadLevel(level, ivec2(x, b)), fy);
+}
+
+vec4 bilinear(VisualPolarMap m, uint eye, vec2 rt, uint level) {
+    float x = rt.x * float(m.width) - 0.5;
+    float i0f = floor(x);
+    float fx = x - i0f;
+    int i0 = int(i0f);
+    uint c0 = uint(clamp(i0, 0, int(m.width) - 1));
+    uint c1 = uint(clamp(i0 + 1, 0, int(m.width) - 1));
+    return mix(columnSample(m, eye, c0, rt.y, level), columnSample(m, eye, c1, rt.y, level), fx);
+}
+
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = ivec2(cameraImageSize());
+    if (p.x >= size.x || p.y >= size.y) return;
+    uint eyes = clamp(vp.grid.z, 1u, 2u);
+    uint eye = min(cameraEyeOf(uint(p.x)), eyes - 1u);
+    VisualPolarMap m = vpMapOfEye(eye);
+    vec2 local = vec2(p) + 0.5 - vec2(float(eye * cameraEyeSize().x), 0.0);
+    vec2 rt = vpToVisualPolar(m, local);
+    // Rows per screen pixel along phi: n / (2 pi r) with the continuous height n = H rho / rho_f
+    // in the fovea (constant there: H / (2 pi r_f), no singularity at the gaze), H beyond; the
+    // level brings it to <= 1 (P5 §3.4).
+    float n = float(m.height) * min(rt.x / m.foveaFraction, 1.0);
+    float rFovea = m.dMax * m.foveaDegrees / kVpMaxDegrees;
+    float rowsPerPixel = rt.x < m.foveaFraction ? float(m.height) / max(2.0 * kVpPi * rFovea, 1e-6)
+                                                : n / max(2.0 * kVpPi * length(local - m.gaze), 1e-6);
+    float L = clamp(log2(max(rowsPerPixel, 1.0)), 0.0, float(max(pc.levels, 1u) - 1u));
+    uint l0 = uint(floor(L));
+    uint l1 = min(l0 + 1u, max(pc.levels, 1u) - 1u);
+    vec4 c = bilinear(m, eye, rt, l0);
+    if (l1 != l0) c = mix(c, bilinear(m, eye, rt, l1), L - float(l0));
+    // NaN/Inf in the VP image never reach the screen.
+    if (any(isnan(c)) || any(isinf(c))) c = vec4(0.0);
+    if (pc.toResult != 0u) imageStore(result, p, c);
+    else imageStore(unwarped, p, c);
+}
