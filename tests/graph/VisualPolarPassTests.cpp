@@ -149,8 +149,9 @@ Image unwarpReference(const VisualPolarMapping& m, glm::uvec2 vpSize, const Imag
         for (uint32_t x = 0; x < screen.x; ++x) {
             glm::dvec2 p(x + 0.5, y + 0.5);
             glm::dvec2 rt = m.toVisualPolar(p);
-            double rpp = rt.x < g.foveaFraction ? g.height / (2 * std::numbers::pi * rFovea)
-                                                : g.height / (2 * std::numbers::pi * glm::length(p - m.gaze));
+            double rpp = rt.x < g.foveaFraction
+                             ? g.height / (2 * std::numbers::pi * rFovea)
+                             : g.height / (2 * std::numbers::pi * glm::length(p - m.gaze));
             double L = std::clamp(std::log2(std::max(rpp, 1.0)), 0.0, double(levels - 1));
             uint32_t l0 = uint32_t(L), l1 = std::min(l0 + 1, levels - 1);
             for (int c = 0; c < 4; ++c) {
@@ -339,4 +340,37 @@ TEST_F(VisualPolarPassTest, FoveatedBlurSparesTheFovea) {
     ASSERT_GT(outer, 100u);
     EXPECT_LT(outerA, 0.5 * outerB) << "the periphery is not smoothed";
     EXPECT_NEAR(meanA / outer, meanB / outer, 0.05);
+}
+
+// Stereo: one VP half per eye around its own gaze; a smooth ramp of each eye's screen position
+// comes back in both halves (no eye reads the other's half).
+TEST_F(VisualPolarPassTest, StereoEyesUseTheirOwnHalfAndGaze) {
+    const uint32_t w = 192, h = 80;
+    const glm::vec2 left(0.3f, 0.4f), right(0.7f, 0.6f);
+    VpRig rig(ctx(), w, h, R"({ "blur": false })");
+    auto cam = camera(w, h, true, left, right);
+    glm::uvec2 vs = rig.vpSize();
+    const uint32_t eyeW = w / 2;
+    Image img(size_t(vs.x) * vs.y * 4, 0.0f);
+    auto ramp = [&](glm::dvec2 p, uint32_t eye) {
+        return 0.1 + 0.5 * p.x / eyeW + 0.2 * p.y / h + 0.3 * eye;
+    };
+    for (uint32_t eye = 0; eye < 2; ++eye) {
+        auto m = mappingOf(vs, 2, {eyeW, h}, eye == 0 ? left : right);
+        for (uint32_t i = 0; i < m.grid.width; ++i)
+            for (uint32_t j = 0; j < m.grid.rows(i); ++j) {
+                size_t k = (size_t(j) * vs.x + eye * m.grid.width + i) * 4;
+                img[k] = float(ramp(m.texelToScreen(i, j), eye));
+                img[k + 3] = 1.0f;
+            }
+    }
+    Image got = rig.unwarp(cam, img);
+    double worst = 0;
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x) {
+            uint32_t eye = x / eyeW;
+            double want = ramp({x - eye * eyeW + 0.5, y + 0.5}, eye);
+            worst = std::max(worst, std::abs(double(got[(size_t(y) * w + x) * 4]) - want));
+        }
+    EXPECT_LT(worst, 0.02);
 }
