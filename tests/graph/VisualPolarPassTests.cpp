@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <numbers>
 #include <random>
@@ -41,12 +43,16 @@ public:
     void execute(ExecuteContext&) override {}
 };
 
-PassRegistry registry() {
-    PassRegistry reg;
-    reg.add(
-        {"VisualPolarWarp", "", [] { return std::make_unique<passes::VisualPolarWarpPass>(); }});
-    reg.add({"Unwarp", "", [] { return std::make_unique<passes::UnwarpPass>(); }});
-    reg.add({"VpFeed", "", [] { return std::make_unique<VpFeedPass>(); }});
+// The graph keeps a reference to its registry: one for the whole test binary.
+const PassRegistry& registry() {
+    static PassRegistry reg = [] {
+        PassRegistry r;
+        r.add({"VisualPolarWarp", "",
+               [] { return std::make_unique<passes::VisualPolarWarpPass>(); }});
+        r.add({"Unwarp", "", [] { return std::make_unique<passes::UnwarpPass>(); }});
+        r.add({"VpFeed", "", [] { return std::make_unique<VpFeedPass>(); }});
+        return r;
+    }();
     return reg;
 }
 
@@ -189,7 +195,7 @@ TEST_F(VisualPolarPassTest, WarpMatchesCpuMapping) {
         uint32_t eyes = c.stereo ? 2 : 1;
         glm::uvec2 eyeSize(c.w / eyes, c.h);
         double worst = 0;
-        uint64_t traced = 0, expectTraced = 0;
+        uint64_t compared = 0, mismatched = 0;
         for (uint32_t eye = 0; eye < eyes; ++eye) {
             auto m = mappingOf(vs, eyes, eyeSize, eye == 0 ? c.left : c.right);
             for (uint32_t i = 0; i < m.grid.width; ++i)
@@ -202,16 +208,22 @@ TEST_F(VisualPolarPassTest, WarpMatchesCpuMapping) {
                     }
                     glm::dvec2 s = m.texelToScreen(i, j);
                     bool on = s.x >= 0 && s.y >= 0 && s.x < eyeSize.x && s.y < eyeSize.y;
-                    expectTraced += on;
-                    traced += t[2] == 1.0f;
+                    // A gaze on the border puts whole rays of texels on it (x = +-0): either
+                    // answer is right there.
+                    double border =
+                        std::min(std::min(std::abs(s.x), std::abs(s.y)),
+                                 std::min(std::abs(s.x - eyeSize.x), std::abs(s.y - eyeSize.y)));
+                    if (border > 1e-3) {
+                        ++compared;
+                        mismatched += on != (t[2] == 1.0f);
+                    }
                     worst = std::max(
                         worst, glm::length(glm::dvec2(t[0] - double(eye * eyeSize.x), t[1]) - s));
                 }
         }
         EXPECT_LT(worst, 2e-3) << c.w << "x" << c.h;
-        // Texels exactly on the screen border may flip with float rounding.
-        EXPECT_NEAR(double(traced), double(expectTraced), 2.0);
-        EXPECT_GT(traced, 0u);
+        EXPECT_EQ(mismatched, 0u);
+        EXPECT_GT(compared, uint64_t(vs.x) * vs.y / 2);
     }
 }
 
