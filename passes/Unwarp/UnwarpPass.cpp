@@ -39,6 +39,8 @@ void UnwarpPass::reflect(graph::Reflection& r) const {
     r.internal("mip3", rgba32).sameAs("color").doc("phi mip level 3");
     r.internal("unwarped", rgba32).doc("the mapped image before the blur");
     r.internal("blur_tmp", rgba32).doc("after the horizontal blur pass");
+    r.internal("sigma", vk::Format::eR32Sfloat)
+        .doc("the blur's sigma per pixel (computed once by the mapping dispatch)");
 }
 
 void UnwarpPass::compile(graph::CompileContext& ctx) {
@@ -59,14 +61,17 @@ void UnwarpPass::execute(graph::ExecuteContext& ctx) {
         mMips->dispatch(ctx.cmd(), vpImage.width(), (vpImage.height() + 1) / 2);
         gpu::computeToComputeBarrier(ctx.cmd());
     }
+    // P5 §3.5: sigma per pixel from its eccentricity, written by the mapping dispatch.
+    const float sigmaMax = mBlurSigma * float(out.height()) / 1440.0f;
     ctx.bindFields(*mMap);
-    mMap->set("levels", uint32_t(levels)).set("toResult", uint32_t(!mBlur));
+    mMap->set("levels", uint32_t(levels))
+        .set("toResult", uint32_t(!mBlur))
+        .set("sigmaMax", sigmaMax)
+        .set("blurDegrees", mBlurDegrees);
     mMap->dispatch(ctx.cmd(), out.width(), out.height());
     if (!mBlur) return;
-    // P5 §3.5: two separable passes; sigma per pixel from its eccentricity.
-    float sigmaMax = mBlurSigma * float(out.height()) / 1440.0f;
+    // Two separable passes.
     ctx.bindFields(*mBlurPipeline);
-    mBlurPipeline->set("sigmaMax", sigmaMax).set("blurDegrees", mBlurDegrees);
     for (uint32_t vertical = 0; vertical < 2; ++vertical) {
         gpu::computeToComputeBarrier(ctx.cmd());
         mBlurPipeline->set("vertical", vertical);

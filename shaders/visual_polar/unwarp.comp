@@ -18,11 +18,41 @@ layout(rgba32f) uniform readonly image2D mip2;
 layout(rgba32f) uniform readonly image2D mip3;
 layout(rgba32f) uniform writeonly image2D unwarped;
 layout(rgba32f) uniform writeonly image2D result;
+layout(r32f) uniform writeonly image2D sigma;  // the blur's sigma per pixel (P5 §3.5)
 
 layout(push_constant) uniform Params {
-    uint levels;    // 1..4
-    uint toResult;  // 1: write `result` (no blur follows), 0: `unwarped`
+    uint levels;        // 1..4
+    uint toResult;      // 1: write `result` (no blur follows), 0: `unwarped` and `sigma`
+    float sigmaMax;     // blur sigma (pixels) at blurDegrees for this height
+    float blurDegrees;  // >= 1
 } pc;
+
+// View-space direction through a point of an eye image (camera.glsl's cameraRay convention).
+vec3 viewDirection(vec2 local) {
+    vec2 size = vec2(max(cameraEyeSize(), uvec2(1u)));
+    vec2 ndc = vec2(2.0 * local.x / size.x - 1.0, 1.0 - 2.0 * local.y / size.y);
+    float t = camera_info.jitter.z;
+    return vec3(ndc.x * t * camera_info.jitter.w, ndc.y * t, -1.0);
+}
+
+// Angle in degrees between two view directions (atan form: accurate for small angles).
+float angleDegrees(vec3 a, vec3 b) { return degrees(atan(length(cross(a, b)), dot(a, b))); }
+
+// P5 §3.5: 0 inside the fovea, linear in the eccentricity (degrees) from the fovea's edge to
+// sigmaMax at blurDegrees, clamped beyond (ours).
+float sigmaAt(VisualPolarMap m, vec2 local) {
+    vec2 d = local - m.gaze;
+    float r = length(d);
+    float rFovea = m.dMax * m.foveaDegrees / kVpMaxDegrees;
+    if (r <= rFovea) return 0.0;
+    vec3 g = viewDirection(m.gaze);
+    float e = angleDegrees(viewDirection(local), g);
+    float eEdge = angleDegrees(viewDirection(m.gaze + d * (rFovea / r)), g);  // r > rFovea >= 0
+    // A fovea wider than blurDegrees: full sigma right outside it.
+    float span = max(pc.blurDegrees - eEdge, 1e-3);
+    return pc.sigmaMax * clamp((e - eEdge) / span, 0.0, 1.0);
+}
+
 
 vec4 loadLevel(uint level, ivec2 p) {
     if (level == 0u) return texelFetch(color, p, 0);
@@ -77,6 +107,10 @@ void main() {
     if (l1 != l0) c = mix(c, bilinear(m, eye, rt, l1), L - float(l0));
     // NaN/Inf in the VP image never reach the screen.
     if (any(isnan(c)) || any(isinf(c))) c = vec4(0.0);
-    if (pc.toResult != 0u) imageStore(result, p, c);
-    else imageStore(unwarped, p, c);
+    if (pc.toResult != 0u) {
+        imageStore(result, p, c);
+    } else {
+        imageStore(unwarped, p, c);
+        imageStore(sigma, p, vec4(sigmaAt(m, local)));
+    }
 }
