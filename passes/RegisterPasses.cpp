@@ -20,6 +20,8 @@
 #include "passes/SampleList/SampleListPass.h"
 #include "passes/TAA/TAAPass.h"
 #include "passes/Tonemap/TonemapPass.h"
+#include "passes/Unwarp/UnwarpPass.h"
+#include "passes/VisualPolarWarp/VisualPolarWarpPass.h"
 
 namespace fovea {
 
@@ -87,6 +89,14 @@ void registerBuiltinPasses() {
         "SVGF",
         "Spatiotemporal variance-guided filtering (Schied et al. 2017): moments, "
         "variance, a-trous with edge stopping, remodulation."));
+    r.add(info<passes::VisualPolarWarpPass>(
+        "VisualPolarWarp",
+        "Visual-Polar space (seed 003 P5 §3.2) per eye around its gaze: screen position of each "
+        "(rho, phi) texel's primary ray, fovea clip, the mapping block; cached per gaze/size."));
+    r.add(info<passes::UnwarpPass>(
+        "Unwarp",
+        "Visual-Polar image to the screen (P5 §3.4-3.5): phi-only mips, backward trilinear "
+        "mapping (wrap phi, clamp rho), separable foveated Gaussian blur."));
 }
 
 }  // namespace fovea

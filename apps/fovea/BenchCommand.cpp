@@ -143,7 +143,7 @@ BenchResult runBenchGraph(const BenchSpec& spec, const BenchGraph& g, gpu::Conte
         frameMs.push_back(t.gpuMs);
         errors.add(f, runner.download(result.output),
                    g.label + " " + result.output + " frame " + std::to_string(f),
-                   reference.forFrame(f), reference.fileFor(f).string());
+                   reference.forFrame(f), reference.fileFor(f).string(), &runner.graph().camera());
     }
     progress.finish();
     result.frameMs = computeStats(frameMs);

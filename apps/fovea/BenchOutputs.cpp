@@ -55,6 +55,21 @@ json resultJson(const BenchResult& r) {
 
 }  // namespace
 
+namespace {
+
+// The mean RMSE of the three eccentricity bands (FrameErrors' "bands"; NaN when absent).
+std::vector<double> bandRmse(const BenchResult& r) {
+    std::vector<double> out(3, std::nan(""));
+    const json* bands = nullptr;
+    if (r.errors.contains("mean") && r.errors["mean"].contains("bands"))
+        bands = &r.errors["mean"]["bands"];
+    for (size_t b = 0; bands && b < out.size() && b < bands->size(); ++b)
+        out[b] = (*bands)[b].at("rmse").get<double>();
+    return out;
+}
+
+}  // namespace
+
 void writeBenchTables(const fs::path& dir, const json& header,
                       const std::vector<BenchResult>& results) {
     json all = header;
@@ -64,7 +79,7 @@ void writeBenchTables(const fs::path& dir, const json& header,
 
     std::ofstream c(dir / "bench.csv");
     c << "label,file,output,frame_ms_median,frame_ms_mean,speedup,rmse_percent,rmse,rel_mse,"
-         "psnr_db,ssim,temporal_error\n";
+         "psnr_db,ssim,temporal_error,rmse_0_5deg,rmse_5_20deg,rmse_20deg_plus\n";
     for (const auto& r : results) {
         const auto& m = r.meanErrors;
         c << csv(r.graph.label) << "," << csv(r.graph.file) << "," << csv(r.output) << ","
@@ -72,7 +87,9 @@ void writeBenchTables(const fs::path& dir, const json& header,
           << number(r.speedup, "%.6g") << "," << number(m.rmsePercent, "%.6g") << ","
           << number(m.rmse, "%.6g") << "," << number(m.relMse, "%.6g") << ","
           << number(m.psnr, "%.6g") << "," << number(m.ssim, "%.6g") << ","
-          << number(r.temporalError, "%.6g") << "\n";
+          << number(r.temporalError, "%.6g");
+        for (double v : bandRmse(r)) c << "," << number(v, "%.6g");
+        c << "\n";
     }
 
     std::ofstream t(dir / "bench.md");
@@ -97,6 +114,13 @@ void writeBenchTables(const fs::path& dir, const json& header,
           << number(r.frameMs.median, "%.3f") << " | " << number(r.speedup, "%.2fx") << " | "
           << number(m.rmsePercent, "%.4f") << " | " << number(m.psnr, "%.2f") << " | "
           << number(m.ssim, "%.4f") << " | " << number(r.temporalError, "%.5f") << " |\n";
+    }
+    t << "\n## RMSE per eccentricity band (degrees from the gaze; mean over measured frames)\n\n"
+      << "| Graph | 0-5 deg | 5-20 deg | 20+ deg |\n|---|---:|---:|---:|\n";
+    for (const auto& r : results) {
+        t << "| " << md(r.graph.label);
+        for (double v : bandRmse(r)) t << " | " << number(v, "%.5f");
+        t << " |\n";
     }
     t << "\n## GPU ms per pass (median over measured frames)\n\n"
       << "| Graph | Pass | Type | Median ms | Executions | Status (last frame) |\n"

@@ -1,5 +1,6 @@
 #include "apps/fovea/ReferenceErrors.h"
 
+#include <algorithm>
 #include <cmath>
 #include <regex>
 
@@ -132,10 +133,15 @@ std::string selectComparedOutput(const GraphRunner& runner, const std::string& r
 }
 
 void FrameErrors::add(uint32_t frame, const image::ImageRGBA& test, const std::string& testName,
-                      const image::ImageRGBA& reference, const std::string& referenceName) {
-    Frame f{frame, referenceName,
+                      const image::ImageRGBA& reference, const std::string& referenceName,
+                      const scene::FrameCamera* camera) {
+    Frame f{frame,
+            referenceName,
             image::computeMetrics(test, reference, mOptions, testName, referenceName),
-            std::nullopt};
+            std::nullopt,
+            {}};
+    // computeMetrics has checked the sizes (InputError otherwise).
+    if (camera) f.bands = sampling::eccentricityBandErrors(test, reference, *camera);
     if (mPrevious) f.temporal = image::temporalError(*mPrevious, test, "previous frame", testName);
     mFrames.push_back(std::move(f));
     mPrevious = test;
@@ -162,6 +168,23 @@ image::ImageMetrics FrameErrors::mean() const {
     return m;
 }
 
+std::vector<sampling::BandError> FrameErrors::meanBands() const {
+    std::vector<sampling::BandError> mean;
+    size_t n = 0;
+    for (const auto& f : mFrames) {
+        if (f.bands.empty()) continue;
+        if (mean.empty()) {
+            mean = f.bands;
+            for (auto& b : mean) b.rmse = 0;
+        }
+        for (size_t b = 0; b < mean.size() && b < f.bands.size(); ++b)
+            mean[b].rmse += f.bands[b].rmse;
+        ++n;
+    }
+    for (auto& b : mean) b.rmse /= double(std::max<size_t>(n, 1));
+    return mean;
+}
+
 double FrameErrors::temporalError() const {
     double sum = 0;
     size_t pairs = 0;
@@ -181,10 +204,12 @@ nlohmann::json FrameErrors::json() const {
         j["frame"] = f.frame;
         j["reference"] = f.reference;
         j["temporal_error"] = f.temporal ? json(*f.temporal) : json(nullptr);
+        if (!f.bands.empty()) j["bands"] = sampling::bandErrorsToJson(f.bands);
         frames.push_back(j);
     }
     json mean = image::metricsToJson(this->mean(), mOptions);
     mean.erase("temporal_error");  // per frame it is against the previous frame, see below
+    if (auto bands = meanBands(); !bands.empty()) mean["bands"] = sampling::bandErrorsToJson(bands);
     return {{"frames", frames}, {"mean", mean}, {"temporal_error", temporalError()}};
 }
 

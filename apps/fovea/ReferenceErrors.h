@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/image/ImageMetrics.h"
+#include "core/sampling/EccentricityBands.h"
 
 namespace fovea::app {
 
@@ -61,8 +62,13 @@ std::string selectComparedOutput(const GraphRunner& runner, const std::string& r
 class FrameErrors {
 public:
     explicit FrameErrors(image::MetricOptions options = {}) : mOptions(options) {}
+    // `camera` (the frame's): also the RMSE per eccentricity band (0-5, 5-20, 20+ degrees,
+    // core/sampling/EccentricityBands.h); null = no bands.
     void add(uint32_t frame, const image::ImageRGBA& test, const std::string& testName,
-             const image::ImageRGBA& reference, const std::string& referenceName);
+             const image::ImageRGBA& reference, const std::string& referenceName,
+             const scene::FrameCamera* camera = nullptr);
+    // Mean per-band RMSE over the frames that have bands (empty when none has).
+    std::vector<sampling::BandError> meanBands() const;
     size_t count() const { return mFrames.size(); }
     // Mean of each per-frame figure; PSNR is +inf when any frame's is (identical images).
     image::ImageMetrics mean() const;
@@ -70,7 +76,8 @@ public:
     double temporalError() const;
     // {"frames": [{"frame", "reference", metrics..., "temporal_error"}], "mean": {...},
     //  "temporal_error"}: the metric keys of metricsToJson; "temporal_error" of a frame is
-    // against the previous compared frame (null for the first).
+    // against the previous compared frame (null for the first). With a camera: "bands" per frame
+    // and in "mean" ([{"from", "to", "pixels", "rmse"}]).
     nlohmann::json json() const;
 
 private:
@@ -79,6 +86,7 @@ private:
         std::string reference;
         image::ImageMetrics metrics;
         std::optional<double> temporal;
+        std::vector<sampling::BandError> bands;
     };
     image::MetricOptions mOptions;
     std::vector<Frame> mFrames;

@@ -185,7 +185,8 @@ int runCommand(const RunOptions& o) {
         report.overheadCpuMs.push_back(t.recordCpuMs - t.passCpuMs);
         if (reference)
             errors.add(f, runner.download(compared), compared + " frame " + std::to_string(f),
-                       reference->forFrame(f), reference->fileFor(f).string());
+                       reference->forFrame(f), reference->fileFor(f).string(),
+                       &runner.graph().camera());
         if (save.count(f)) {
             for (const auto& out : desc.outputs) {
                 const std::string name = out.source.str();

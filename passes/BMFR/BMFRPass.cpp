@@ -68,32 +68,43 @@ void BMFRPass::params(graph::ParamVisitor& v) {
 
 void BMFRPass::reflect(graph::Reflection& r) const {
     const auto undefined = vk::Format::eUndefined;
+    // Every size follows `color`: the screen, or a Visual-Polar grid (seed 003 P5 §3.3: BMFR runs
+    // unchanged on the VP image; reprojection comes from the VP-space `motion`).
     r.input("color", undefined)
-        .screen()
+        .anySize()
         .floatOnly()
         .doc("noisy albedo-demodulated radiance (PathTrace `demodulated`), a = samples (0 = none)");
-    r.input("position", undefined).screen().floatOnly().doc("world position, w > 0 on a hit");
-    r.input("normal", undefined).screen().floatOnly().doc("shading normal (unit length)");
+    r.input("position", undefined)
+        .sameAs("color")
+        .floatOnly()
+        .doc("world position, w > 0 on a hit");
+    r.input("normal", undefined).sameAs("color").floatOnly().doc("shading normal (unit length)");
     r.input("albedo", undefined)
-        .screen()
+        .sameAs("color")
         .floatOnly()
         .optional()
         .doc("remodulation albedo (and a feature with features = albedo); open: 1");
     r.input("emission", undefined)
-        .screen()
+        .sameAs("color")
         .floatOnly()
         .optional()
         .doc("emission added back after remodulation; open: 0");
     r.input("motion", undefined)
-        .screen()
+        .sameAs("color")
         .floatOnly()
         .optional()
         .doc("previous pixel - current pixel; open: reproject positions through the camera");
 
     const auto rgba32 = vk::Format::eR32G32B32A32Sfloat;
-    r.output("filtered", rgba32).doc("final colour: phase III result remodulated, a = 1");
-    r.output("accumulated", rgba32).doc("phase I: accumulated demodulated radiance, a = samples");
-    r.output("fitted", rgba32).doc("phase II: weighted sum of the block fits (demodulated)");
+    r.output("filtered", rgba32)
+        .sameAs("color")
+        .doc("final colour: phase III result remodulated, a = 1");
+    r.output("accumulated", rgba32)
+        .sameAs("color")
+        .doc("phase I: accumulated demodulated radiance, a = samples");
+    r.output("fitted", rgba32)
+        .sameAs("color")
+        .doc("phase II: weighted sum of the block fits (demodulated)");
     r.output("stats", undefined)
         .buffer(kStatsBytes)
         .persistent()
@@ -102,19 +113,30 @@ void BMFRPass::reflect(graph::Reflection& r) const {
             "pixels, negative colour samples, blocks with dropped columns");
     // Private histories: the graph keeps each one's previous frame (shaders: prev_hist_*) and says
     // when it holds none (first frame, reset, camera cut, resize).
-    r.internal("hist_position", rgba32).history().doc("phase I history: world positions");
+    r.internal("hist_position", rgba32)
+        .sameAs("color")
+        .history()
+        .doc("phase I history: world positions");
     r.internal("hist_normal", vk::Format::eR16G16B16A16Sfloat)
+        .sameAs("color")
         .history()
         .doc("phase I history: normals");
     const auto history = mFp16History ? vk::Format::eR16G16B16A16Sfloat : rgba32;
-    r.internal("hist_accum", history).history().doc("phase I history: colour + count");
-    r.internal("hist_filtered", history).history().doc("phase III history: colour + count");
+    r.internal("hist_accum", history)
+        .sameAs("color")
+        .history()
+        .doc("phase I history: colour + count");
+    r.internal("hist_filtered", history)
+        .sameAs("color")
+        .history()
+        .doc("phase III history: colour + count");
     r.internal("coefficients", vk::Format::eUndefined)
         .bufferPerBlock(32, kCoefStride * sizeof(float), 0, 1)
         .doc(
             "phase II: per-block fit (bmfr_common.glsl layout); one block more per axis than "
             "the image needs, so every block offset is covered");
     r.internal("reprojection", rgba32)
+        .sameAs("color")
         .doc("phase I -> III: xy previous pixel, z accepted-tap mask (4 bits)");
 }
 
@@ -135,9 +157,6 @@ void BMFRPass::compile(graph::CompileContext& ctx) {
     mFit = ctx.createPipeline("bmfr/fit.comp", defines);
     mWeightedSum = ctx.createPipeline("bmfr/weighted_sum.comp", defines);
     mSecond = ctx.createPipeline("bmfr/accumulate_filtered.comp", defines);
-    const auto& size = ctx.renderSize();
-    mBlocksX = blocksAcross(size.width);
-    mBlocksY = blocksAcross(size.height);
     mTimestamps.reset();
     mTimingsPending = false;
     if (mTimings) mTimestamps = std::make_unique<gpu::TimestampPool>(ctx.gpu(), 5);
@@ -158,6 +177,10 @@ void BMFRPass::execute(graph::ExecuteContext& ctx) {
     const bool history = ctx.historyValid("hist_accum");
     const auto& out = ctx.image("filtered");
     const glm::ivec2 size(int(out.width()), int(out.height()));
+    // Blocks of the image BMFR runs on (the render size, or a smaller Visual-Polar grid: the
+    // per-block buffer follows the render size, which covers it).
+    mBlocksX = blocksAcross(out.width());
+    mBlocksY = blocksAcross(out.height());
 
     if (!history) {
         // Counters restart with the history (cumulative since the last reset).

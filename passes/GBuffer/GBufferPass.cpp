@@ -21,29 +21,49 @@ void GBufferPass::reflect(graph::Reflection& r) const {
         .doc(
             "sample layout (docs/sample-layouts.md): only listed pixels are traced, the rest "
             "are invalid; open = every pixel");
+    r.input("coords", vk::Format::eR32G32B32A32Sfloat)
+        .optional()
+        .floatOnly()
+        .doc(
+            "VisualPolarWarp coords (seed 003 P5 §3.2): trace a regular (rho, phi) grid, one "
+            "primary ray per traced texel at its screen position; the outputs take its size, "
+            "untraced texels get flags bit2 (clipped); open = the screen grid");
+    r.input("vp").buffer(64).optional().doc(
+        "VisualPolarWarp `vp` block (with coords): motion in Visual-Polar texels (previous "
+        "screen position mapped into the grid); open: motion in screen pixels");
     r.output("visibility", vk::Format::eR32G32B32A32Uint)
-        .screen()
+        .sameAs("coords")
         .doc(
             "x triangle + 1 (0 = miss), y/z barycentrics (float bits), w flags: bit0 traced, "
-            "bit1 hit, bits 8..15 eye");
-    r.output("position", vk::Format::eR32G32B32A32Sfloat).screen().doc("world position; w 1 = hit");
+            "bit1 hit, bit2 clipped (Visual-Polar texel never traced), bits 8..15 eye");
+    r.output("position", vk::Format::eR32G32B32A32Sfloat)
+        .sameAs("coords")
+        .doc("world position; w 1 = hit");
     r.output("normal", vk::Format::eR16G16B16A16Sfloat)
-        .screen()
+        .sameAs("coords")
         .doc("shading normal facing the viewer; w 1 = hit");
-    r.output("depth", vk::Format::eR32Sfloat).screen().doc("linear view depth; 0 = none");
+    r.output("depth", vk::Format::eR32Sfloat).sameAs("coords").doc("linear view depth; 0 = none");
     r.output("albedo", vk::Format::eR16G16B16A16Sfloat)
-        .screen()
+        .sameAs("coords")
         .doc("first-hit base colour (linear); a 1 = hit");
     r.output("motion", vk::Format::eR16G16Sfloat)
-        .screen()
-        .doc("previous pixel - current pixel (jitter-free); 0 = none");
-    r.output("material", vk::Format::eR32Uint).screen().doc("material index + 1; 0 = none");
+        .sameAs("coords")
+        .doc(
+            "previous pixel - current pixel (jitter-free); 0 = none. On a Visual-Polar grid with "
+            "`vp`: previous texel - current texel (columns, rows of the column, phi wrapped)");
+    r.output("material", vk::Format::eR32Uint).sameAs("coords").doc("material index + 1; 0 = none");
     r.output("roughness_metallic", vk::Format::eR16G16Sfloat)
-        .screen()
+        .sameAs("coords")
         .doc("x roughness, y metallic");
     r.output("emission", vk::Format::eR16G16B16A16Sfloat)
-        .screen()
+        .sameAs("coords")
         .doc("radiance emitted toward the camera at the first hit; a 1 = hit");
+}
+
+void GBufferPass::validate(const graph::ValidateContext& ctx) const {
+    // A Visual-Polar grid already is the sample distribution (P5 §3.2): no list on top of it.
+    if (ctx.connected("coords") && ctx.connected(sampling::kSampleLayoutField))
+        ctx.fail("coords", "inputs 'coords' and 'layout' cannot both be connected");
 }
 
 void GBufferPass::compile(graph::CompileContext& ctx) {
@@ -65,10 +85,13 @@ void GBufferPass::compile(graph::CompileContext& ctx) {
 void GBufferPass::execute(graph::ExecuteContext& ctx) {
     const auto& out = ctx.image("visibility");
     const bool useLayout = ctx.connected(sampling::kSampleLayoutField);
+    const bool useCoords = ctx.connected("coords");
     ctx.bindFields(*mPipeline);
     mLayoutInput->bind(*mPipeline, useLayout ? &ctx.buffer(sampling::kSampleLayoutField) : nullptr);
     mPipeline->set("size", glm::uvec2(out.width(), out.height()))
         .set("useLayout", uint32_t(useLayout))
+        .set("useCoords", uint32_t(useCoords))
+        .set("useVp", uint32_t(useCoords && ctx.connected("vp")))
         .set("useJitter", uint32_t(mJitter));
     if (useLayout) {
         // Unlisted pixels must read invalid, never last frame's values: clear everything, then

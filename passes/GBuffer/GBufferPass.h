@@ -13,6 +13,7 @@ public:
     void params(graph::ParamVisitor& v) override;
     void reflect(graph::Reflection& r) const override;
     uint32_t sceneNeeds() const override { return graph::kSceneGeometry; }
+    void validate(const graph::ValidateContext& ctx) const override;
     void compile(graph::CompileContext& ctx) override;
     void execute(graph::ExecuteContext& ctx) override;
     // Outputs depend only on the scene, the camera (both in the graph's cache key for a pass

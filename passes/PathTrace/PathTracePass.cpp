@@ -51,7 +51,8 @@ void PathTracePass::reflect(graph::Reflection& r) const {
         .optional()
         .doc(
             "GBuffer visibility (triangle + 1, barycentrics, flags): primary hits; open = own "
-            "jittered primary rays per sample");
+            "jittered primary rays per sample. The outputs take its size (a Visual-Polar grid: "
+            "texels flagged clipped get no sample)");
     r.input("albedo").optional().doc(
         "first-hit base colour for demodulation; open = the pass's own first hit");
     r.input(sampling::kSampleLayoutField)
@@ -59,16 +60,21 @@ void PathTracePass::reflect(graph::Reflection& r) const {
         .optional()
         .doc("sample layout (CONTRACT): only listed pixels are traced, with their count");
     r.output("radiance", vk::Format::eR32G32B32A32Sfloat)
+        .sameAs("visibility")
         .doc("mean radiance of the pixel's samples; a = samples traced (0 = untraced)");
     r.output("demodulated", vk::Format::eR32G32B32A32Sfloat)
+        .sameAs("visibility")
         .doc(
             "(radiance - primary emission) / albedo' (albedo' = albedo > 1e-3 ? albedo : 1); "
             "a = samples");
     r.output("hit_distance", vk::Format::eR32Sfloat)
+        .sameAs("visibility")
         .doc("mean distance of the first indirect ray's hit over the samples that hit; 0 = none");
     r.output("direct", vk::Format::eR16G16B16A16Sfloat)
+        .sameAs("visibility")
         .doc("primary emission + light after one reflection; a = samples");
     r.output("indirect", vk::Format::eR16G16B16A16Sfloat)
+        .sameAs("visibility")
         .doc("light after two or more reflections; a = samples");
 }
 

@@ -13,6 +13,8 @@
 #include "../common/camera.glsl"
 #include "../common/sample_layout.glsl"
 #include "../common/scene_sample.glsl"
+#define VISUAL_POLAR_PARAMS
+#include "../common/visual_polar.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -25,16 +27,21 @@ layout(rg16f) uniform writeonly image2D motion;
 layout(r32ui) uniform writeonly uimage2D material;
 layout(rg16f) uniform writeonly image2D roughness_metallic;
 layout(rgba16f) uniform writeonly image2D emission;
+// VisualPolarWarp coords (seed 003 P5 §3.2): xy screen position, z 1 = traced, w eye.
+uniform sampler2D coords;
 
 layout(push_constant) uniform Params {
     uvec2 size;      // the outputs' size (the whole side-by-side image)
     uint useLayout;  // 1: trace the entries of sample_layout; 0: every pixel
     uint clearPass;  // 1: only write the invalid marker to every pixel (before a layout trace)
     uint useJitter;  // 1: offset rays by the camera's sub-pixel jitter
+    uint useCoords;  // 1: trace the Visual-Polar grid of `coords` (outputs at its size)
+    uint useVp;      // 1 (with useCoords): motion in Visual-Polar texels through the `vp` block
 } pc;
 
 const uint kFlagTraced = 1u;
 const uint kFlagHit = 2u;
+const uint kFlagClipped = 4u;  // a Visual-Polar texel that is never traced
 
 // The "nothing here" value of every output: untraced pixels (visibility.w bit0 clear) and, except
 // for visibility's flags, misses.
@@ -68,6 +75,17 @@ void main() {
     // The ray's image position; the same point is "now" for the motion vector below, so a static
     // camera gives exactly zero motion with or without jitter.
     vec2 now = vec2(pixel) + 0.5 + (pc.useJitter != 0u ? camera_info.jitter.xy : vec2(0.0));
+    if (pc.useCoords != 0u) {
+        // A regular (rho, phi) grid (P5 §3.2): the texel's ray goes through its screen position
+        // (no jitter: the grid is fixed per gaze). Motion stays in screen pixels.
+        vec4 c = texelFetch(coords, p, 0);
+        eye = min(uint(max(c.w, 0.0)), cameraEyeCount() - 1u);
+        if (c.z < 0.5) {
+            writeEmpty(p, uvec4(0u, 0u, 0u, kFlagClipped | (eye << 8)));
+            return;
+        }
+        now = c.xy;
+    }
     vec3 origin, dir;
     cameraRay(eye, now, origin, dir);
 
@@ -92,6 +110,18 @@ void main() {
     if (camera_info.eyes[eye].prevViewProj != camera_info.eyes[eye].viewProj &&
         cameraPreviousPixel(eye, s.position, previous))
         mv = previous - now;
+    if (pc.useCoords != 0u && pc.useVp != 0u && mv != vec2(0.0)) {
+        // P5 §3.3: world position -> previous screen position -> Visual-Polar texel (with the
+        // current gaze: the camera block holds no previous gaze). x in columns; y in rows of the
+        // texel's column, wrapped to the shorter way round phi so the seam never shows as a jump.
+        VisualPolarMap m = vpMapOfEye(eye);
+        vec2 rt = vpToVisualPolar(m, previous - vec2(float(eye * cameraEyeSize().x), 0.0));
+        uint column = uint(p.x) - min(eye * m.width, uint(p.x));
+        float n = float(vpRows(m, min(column, m.width - 1u)));  // >= 1
+        float dRow = rt.y * n - 0.5 - float(p.y);
+        dRow -= n * round(dRow / n);
+        mv = vec2(rt.x * float(m.width) - 0.5 - float(column), dRow);
+    }
 
     imageStore(visibility, p,
                uvec4(hit.triangle + 1u, floatBitsToUint(hit.barycentrics.x),

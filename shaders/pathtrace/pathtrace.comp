@@ -63,6 +63,7 @@ const float kInfinity = 1e30;
 const float kHalfMax = 65504.0;
 const uint kVisTraced = 1u;
 const uint kVisHit = 2u;
+const uint kVisClipped = 4u;  // GBuffer on a Visual-Polar grid: a texel that is never traced
 
 // Dimensions per path vertex: 4 for the light sample, 3 for the BRDF sample; 2 for the pixel.
 const uint kDimPixel = 0u;
@@ -156,7 +157,10 @@ PathResult tracePath(uvec2 pixel, bool haveVisibility, uvec4 vis) {
     r.emission = vec3(0.0);
     r.albedo = vec3(0.0);
     r.hitT = 0.0;
-    uint eye = cameraEyeOf(pixel.x);
+    // The GBuffer's eye (bits 8..15): on a Visual-Polar grid the texel's column is not a screen
+    // column (seed 003 P5 §3.2); on the screen grid both agree.
+    uint eye = haveVisibility ? min((vis.w >> 8) & 0xFFu, cameraEyeCount() - 1u)
+                              : cameraEyeOf(pixel.x);
     uint triangle;
     vec2 bary;
     vec3 dir;
@@ -233,6 +237,16 @@ void main() {
                               uint(max(pc.spp, 0)), pixel, samples))
         return;
     uvec4 vis = pc.useVisibility != 0 ? imageLoad(visibility, ivec2(pixel)) : uvec4(0u);
+    // A Visual-Polar texel outside the grid's traced area (fovea clip, off screen): no sample.
+    if (pc.useVisibility != 0 && (vis.w & kVisClipped) != 0u) {
+        ivec2 q = ivec2(pixel);
+        imageStore(radiance, q, vec4(0.0));
+        imageStore(demodulated, q, vec4(0.0));
+        imageStore(hit_distance, q, vec4(0.0));
+        imageStore(direct, q, vec4(0.0));
+        imageStore(indirect, q, vec4(0.0));
+        return;
+    }
     // A pixel the GBuffer did not trace (bit 0 clear) falls back to own primary rays.
     bool haveVisibility = pc.useVisibility != 0 && (vis.w & kVisTraced) != 0u;
 

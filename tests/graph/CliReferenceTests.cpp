@@ -67,6 +67,20 @@ TEST(CliReference, TheRunItselfAsReferenceHasZeroError) {
     EXPECT_EQ(s["frames"][2].at("rmse").get<double>(), 0.0);
     EXPECT_GT(s.at("mean").at("rmse").get<double>(), 0.0);
     EXPECT_TRUE(s["mean"].at("psnr_db").is_null()) << "one identical frame: mean PSNR infinite";
+    // Error per eccentricity band (0-5, 5-20, 20+ degrees): every pixel in one band; zero for the
+    // identical frame, non-zero in some band of a different frame.
+    uint64_t pixels[2] = {0, 0};
+    for (int k = 0; k < 2; ++k) {
+        const json& bands = (k == 0 ? ref : s).at("mean").at("bands");
+        ASSERT_EQ(bands.size(), 3u);
+        for (const auto& b : bands) pixels[k] += b.at("pixels").get<uint64_t>();
+    }
+    EXPECT_GT(pixels[0], 0u);
+    EXPECT_EQ(pixels[0], pixels[1]);
+    for (const auto& b : ref["frames"][1].at("bands")) EXPECT_EQ(b.at("rmse").get<double>(), 0.0);
+    double band0 = 0;
+    for (const auto& b : s["frames"][0].at("bands")) band0 += b.at("rmse").get<double>();
+    EXPECT_GT(band0, 0.0);
 }
 
 TEST(CliReference, KnownOffsetGivesKnownErrorsAndTemporalError) {

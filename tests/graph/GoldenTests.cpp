@@ -198,6 +198,16 @@ TEST_F(GoldenTest, SVGF) {
     EXPECT_TRUE(fovea::test::goldenMatches(ctx(), spec));
 }
 
+TEST_F(GoldenTest, KoskelaVisualPolarBMFR) {
+    // Seed 003 P5's pipeline (graphs/koskela_vp_bmfr.json): Visual-Polar warp, GBuffer and 1 spp
+    // PathTrace on the (rho, phi) grid (43x43 at 64x64), BMFR + TAA in VP, Unwarp with the
+    // foveated blur; four frames of the Cornell dolly.
+    GoldenSpec spec = cornellGolden("koskela_vp_bmfr", "graphs/koskela_vp_bmfr.json", false);
+    spec.width = spec.height = 64;
+    spec.frames = 4;
+    EXPECT_TRUE(fovea::test::goldenMatches(ctx(), spec));
+}
+
 TEST_F(GoldenTest, Chain20) {
     // 18 chained Combines of animated noise (aliased transients), tonemapped to rgba8.
     EXPECT_TRUE(fovea::test::goldenMatches(ctx(), golden("chain20", "graphs/tests/chain20.json")));

@@ -15,7 +15,7 @@
 #include "core/vk/Resources.h"
 #include "passes/HistoryFix/HistoryFixPass.h"
 #include "passes/RecurrentBlur/RecurrentBlurPass.h"
-#include "tests/graph/FeedPass.h"
+#include "tests/passes/FeedPass.h"
 
 namespace fovea::test {
 

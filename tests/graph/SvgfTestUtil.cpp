@@ -8,7 +8,7 @@
 #include "core/graph/PassRegistry.h"
 #include "core/vk/Resources.h"
 #include "passes/SVGF/SVGFPass.h"
-#include "tests/graph/FeedPass.h"
+#include "tests/passes/FeedPass.h"
 
 namespace fovea::testsvgf {
 

@@ -1,0 +1,72 @@
+#include "core/sampling/EccentricityBands.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace fovea::sampling {
+
+namespace {
+// View-space direction through a point of an eye image (camera.glsl's cameraRay convention).
+glm::dvec3 viewDirection(glm::dvec2 local, glm::dvec2 eyeSize, double tanHalf, double aspect) {
+    glm::dvec2 ndc(2.0 * local.x / eyeSize.x - 1.0, 1.0 - 2.0 * local.y / eyeSize.y);
+    return {ndc.x * tanHalf * aspect, ndc.y * tanHalf, -1.0};
+}
+}  // namespace
+
+double pixelEccentricityDegrees(const scene::FrameCamera& camera, uint32_t width, uint32_t height,
+                                uint32_t x, uint32_t y) {
+    const uint32_t eyes = std::clamp(camera.eyeCount, 1u, scene::kMaxEyes);
+    const uint32_t eyeWidth = std::max(width / eyes, 1u);
+    const uint32_t eye = std::min(x / eyeWidth, eyes - 1);
+    const glm::dvec2 eyeSize(eyeWidth, std::max(height, 1u));
+    const double tanHalf = std::tan(0.5 * double(camera.yfov));
+    const double aspect = eyeSize.x / eyeSize.y;
+    glm::dvec2 local(x + 0.5 - double(eye) * eyeWidth, y + 0.5);
+    glm::dvec2 gaze = glm::dvec2(camera.eyes[eye].gaze) * eyeSize;
+    glm::dvec3 a = viewDirection(local, eyeSize, tanHalf, aspect);
+    glm::dvec3 b = viewDirection(gaze, eyeSize, tanHalf, aspect);
+    // atan(|a x b|, a . b): accurate for small angles; a . b >= 1 (z = -1 each).
+    return glm::degrees(std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)));
+}
+
+std::vector<BandError> eccentricityBandErrors(const image::ImageRGBA& test,
+                                              const image::ImageRGBA& reference,
+                                              const scene::FrameCamera& camera) {
+    constexpr size_t kBands = std::size(kEccentricityBandEdges);
+    std::vector<BandError> bands(kBands);
+    std::vector<double> sum(kBands, 0.0);
+    for (size_t b = 0; b < kBands; ++b) {
+        bands[b].fromDegrees = kEccentricityBandEdges[b];
+        bands[b].toDegrees = b + 1 < kBands ? kEccentricityBandEdges[b + 1]
+                                            : std::numeric_limits<double>::infinity();
+    }
+    const uint32_t w = std::min(test.width, reference.width);
+    const uint32_t h = std::min(test.height, reference.height);
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x) {
+            double e = pixelEccentricityDegrees(camera, w, h, x, y);
+            size_t b = kBands - 1;
+            while (b > 0 && e < kEccentricityBandEdges[b]) --b;
+            const float* t = &test.pixels[(size_t(y) * test.width + x) * 4];
+            const float* r = &reference.pixels[(size_t(y) * reference.width + x) * 4];
+            for (int c = 0; c < 3; ++c) sum[b] += double(t[c] - r[c]) * double(t[c] - r[c]);
+            ++bands[b].pixels;
+        }
+    for (size_t b = 0; b < kBands; ++b)
+        if (bands[b].pixels > 0) bands[b].rmse = std::sqrt(sum[b] / (3.0 * bands[b].pixels));
+    return bands;
+}
+
+nlohmann::json bandErrorsToJson(const std::vector<BandError>& bands) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& b : bands)
+        out.push_back({{"from", b.fromDegrees},
+                       {"to", std::isinf(b.toDegrees) ? nlohmann::json(nullptr)
+                                                      : nlohmann::json(b.toDegrees)},
+                       {"pixels", b.pixels},
+                       {"rmse", b.rmse}});
+    return out;
+}
+
+}  // namespace fovea::sampling

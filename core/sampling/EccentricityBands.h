@@ -1,0 +1,38 @@
+// Error per eccentricity band (seed 003 P5 §5 compares the fovea and the periphery separately):
+// every pixel's eccentricity in degrees - the angle between its view ray and its eye's gaze ray,
+// from the camera's vertical field of view (as FoveationMask's `degrees`) - and the RMSE of a
+// test image against a reference over the pixels of each band, 0-5, 5-20 and 20+ degrees.
+#pragma once
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "core/image/ImageIO.h"
+#include "core/scene/Camera.h"
+
+namespace fovea::sampling {
+
+struct BandError {
+    double fromDegrees = 0, toDegrees = 0;  // [from, to); to = +inf for the last band
+    uint64_t pixels = 0;
+    double rmse = 0;  // sqrt(mean over the band's pixels and R, G, B of the squared difference)
+};
+
+// The bands' lower edges: 0, 5 and 20 degrees (the last band is open).
+inline constexpr double kEccentricityBandEdges[] = {0.0, 5.0, 20.0};
+
+// Eccentricity in degrees of pixel (x, y) of a width x height side-by-side image (eye width =
+// width / eyeCount), from `camera`'s yfov and each eye's gaze.
+double pixelEccentricityDegrees(const scene::FrameCamera& camera, uint32_t width, uint32_t height,
+                                uint32_t x, uint32_t y);
+
+// Per-band RMSE of `test` against `reference` (same size; the caller checks). A band without
+// pixels has rmse 0.
+std::vector<BandError> eccentricityBandErrors(const image::ImageRGBA& test,
+                                              const image::ImageRGBA& reference,
+                                              const scene::FrameCamera& camera);
+
+// [{"from", "to" (null = open), "pixels", "rmse"}]
+nlohmann::json bandErrorsToJson(const std::vector<BandError>& bands);
+
+}  // namespace fovea::sampling

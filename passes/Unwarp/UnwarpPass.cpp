@@ -1,0 +1,82 @@
+#include "passes/Unwarp/UnwarpPass.h"
+
+#include <algorithm>
+
+#include "core/vk/Barriers.h"
+#include "core/vk/ComputePipeline.h"
+#include "core/vk/Resources.h"
+
+namespace fovea::passes {
+
+namespace {
+constexpr int kMaxLevels = 4;  // level 0 (the input) + mip1..mip3
+}
+
+void UnwarpPass::params(graph::ParamVisitor& v) {
+    v.add("levels", mLevels, 4,
+          "phi mip levels incl. the input (P5 §3.4: mipmaps along phi only); 1 = bilinear only",
+          {1, kMaxLevels});
+    v.add("blur", mBlur, true, "apply the foveated Gaussian blur (P5 §3.5); false = mapping only");
+    v.add("blurSigma", mBlurSigma, 6.8f,
+          "blur sigma in pixels at blurDegrees for a 1440-pixel-high eye image (P5 §3.5: 6.8 at "
+          "1280x1440), scaled by height / 1440; clamped beyond blurDegrees",
+          {0, 32});
+    v.add("blurDegrees", mBlurDegrees, 30.0f,
+          "eccentricity (degrees, from the camera's vertical field of view) where sigma reaches "
+          "blurSigma; sigma rises linearly from 0 at the fovea's edge",
+          {1, 90});
+}
+
+void UnwarpPass::reflect(graph::Reflection& r) const {
+    r.input("color").floatOnly().doc("the Visual-Polar image (eye halves side by side)");
+    r.input("vp").buffer(64).doc("VisualPolarWarp's `vp` block (the mapping)");
+    r.output("result", vk::Format::eR32G32B32A32Sfloat)
+        .screen()
+        .doc("the screen image (finite everywhere; a = the VP alpha, interpolated)");
+    const auto rgba32 = vk::Format::eR32G32B32A32Sfloat;
+    r.internal("mip1", rgba32).sameAs("color").doc("phi mip level 1 (pair averages, wrapped)");
+    r.internal("mip2", rgba32).sameAs("color").doc("phi mip level 2");
+    r.internal("mip3", rgba32).sameAs("color").doc("phi mip level 3");
+    r.internal("unwarped", rgba32).doc("the mapped image before the blur");
+    r.internal("blur_tmp", rgba32).doc("after the horizontal blur pass");
+    r.internal("sigma", vk::Format::eR32Sfloat)
+        .doc("the blur's sigma per pixel (computed once by the mapping dispatch)");
+}
+
+void UnwarpPass::compile(graph::CompileContext& ctx) {
+    mMips = ctx.createPipeline("visual_polar/phi_mips.comp");
+    mMap = ctx.createPipeline("visual_polar/unwarp.comp");
+    mBlurPipeline = ctx.createPipeline("visual_polar/foveated_blur.comp");
+}
+
+void UnwarpPass::execute(graph::ExecuteContext& ctx) {
+    const auto& vpImage = ctx.image("mip1");
+    const auto& out = ctx.image("result");
+    const int levels = std::clamp(mLevels, 1, kMaxLevels);
+    // P5 §3.4: level k of a column holds ceil(n / 2^k) rows, each the average of two rows of
+    // level k - 1 (wrapped); one dispatch per level, ordered by barriers.
+    ctx.bindFields(*mMips);
+    for (int level = 1; level < levels; ++level) {
+        mMips->set("level", uint32_t(level));
+        mMips->dispatch(ctx.cmd(), vpImage.width(), (vpImage.height() + 1) / 2);
+        gpu::computeToComputeBarrier(ctx.cmd());
+    }
+    // P5 §3.5: sigma per pixel from its eccentricity, written by the mapping dispatch.
+    const float sigmaMax = mBlurSigma * float(out.height()) / 1440.0f;
+    ctx.bindFields(*mMap);
+    mMap->set("levels", uint32_t(levels))
+        .set("toResult", uint32_t(!mBlur))
+        .set("sigmaMax", sigmaMax)
+        .set("blurDegrees", mBlurDegrees);
+    mMap->dispatch(ctx.cmd(), out.width(), out.height());
+    if (!mBlur) return;
+    // Two separable passes.
+    ctx.bindFields(*mBlurPipeline);
+    for (uint32_t vertical = 0; vertical < 2; ++vertical) {
+        gpu::computeToComputeBarrier(ctx.cmd());
+        mBlurPipeline->set("vertical", vertical);
+        mBlurPipeline->dispatch(ctx.cmd(), out.width(), out.height());
+    }
+}
+
+}  // namespace fovea::passes

@@ -1,0 +1,139 @@
+// The Visual-Polar mapping of seed 003 P5 §3.2 (thesis §4.6.2), shared by every pass that reads
+// or writes Visual-Polar images. Twin of core/sampling/VisualPolar.{h,cpp} (conventions there and
+// in docs/visual-polar.md); the tests compare the two.
+//
+// Per eye: column i <-> rho = (i + 0.5) / W, row j <-> t = phi / 2 pi = (j + 0.5) / n(i); n(i) =
+// H outside the fovea, ceil(H rho / rho_f) inside (P5's triangular clip). Screen radius r =
+// dMax e(rho) / 80, e linear in the fovea and the inverse acuity CDF (Eq. 2) beyond.
+//
+// Define VISUAL_POLAR_PARAMS (readonly) or VISUAL_POLAR_PARAMS_WRITE before including to get the
+// `vp` block written by the VisualPolarWarp pass (field `vp`, 64 bytes, std430).
+#ifndef FOVEA_VISUAL_POLAR_GLSL
+#define FOVEA_VISUAL_POLAR_GLSL
+
+const float kVpPi = 3.14159265358979;
+const float kVpFlatDegrees = 5.79;
+const float kVpMaxDegrees = 80.0;
+
+struct VisualPolarMap {
+    vec2 screen;         // eye image size (pixels), >= 1
+    vec2 gaze;           // pixels of the eye image, on the screen
+    float dMax;          // largest gaze-to-corner distance, >= 0.5
+    uint width;          // VP texels per eye, >= 1
+    uint height;         // >= 1
+    float foveaFraction; // rho_f in (0, 1]
+    float foveaDegrees;  // e_f = f^-1(rho_f)
+};
+
+// P5 Eq. 2 normalized by its value at 80 degrees (1091.31); pi e^2 where the acuity is flat.
+float vpAcuityCdf(float e) {
+    e = clamp(e, 0.0, kVpMaxDegrees);
+    if (e <= kVpFlatDegrees) return kVpPi * e * e / 1091.3132;
+    float a = 0.3 * e + 1.0;  // >= 1
+    return ((1.0 / a + log(a)) * 166.4 * kVpPi - 612.3) / 1091.3132;
+}
+
+// df/de = 2 pi e m(e) / h(80): positive for e > 0.
+float vpAcuityCdfDerivative(float e) {
+    e = clamp(e, 0.0, kVpMaxDegrees);
+    float a = 0.3 * e + 1.0;
+    float raw = e <= kVpFlatDegrees ? 2.0 * kVpPi * e : 166.4 * kVpPi * 0.09 * e / (a * a);
+    return raw / 1091.3132;
+}
+
+// f^-1(u): closed form where the acuity is flat, else P5 Eq. 3 (the fitted polynomial) refined
+// by Newton steps on Eq. 2 (Eq. 3 alone is up to 0.03 degrees and, in density, 2.4 % off).
+float vpAcuityInverse(float u) {
+    u = clamp(u, 0.0, 1.0);
+    if (u <= 0.0965067) return sqrt(u * 1091.3132 / kVpPi);
+    float e = (((25.09 * u + 0.1680) * u + 27.61) * u + 23.87) * u + 3.232;
+    e = clamp(e, kVpFlatDegrees, kVpMaxDegrees);
+    for (int k = 0; k < 3; ++k)  // derivative >= 0.0042 on [5.79, 80]: no division by ~0
+        e = clamp(e - (vpAcuityCdf(e) - u) / vpAcuityCdfDerivative(e), kVpFlatDegrees,
+                  kVpMaxDegrees);
+    return e;
+}
+
+// n(i): the phi height of column i, in [1, H].
+uint vpRows(VisualPolarMap m, uint column) {
+    float rho = (float(column) + 0.5) / float(m.width);
+    if (rho >= m.foveaFraction) return m.height;
+    return clamp(uint(ceil(float(m.height) * rho / m.foveaFraction)), 1u, m.height);
+}
+
+float vpEccentricity(VisualPolarMap m, float rho) {
+    if (rho < m.foveaFraction) return max(rho, 0.0) * m.foveaDegrees / m.foveaFraction;
+    return vpAcuityInverse(rho);
+}
+
+float vpRhoOfEccentricity(VisualPolarMap m, float e) {
+    if (e < m.foveaDegrees) return max(e, 0.0) * m.foveaFraction / m.foveaDegrees;
+    return vpAcuityCdf(e);
+}
+
+float vpRadius(VisualPolarMap m, float rho) { return m.dMax * vpEccentricity(m, rho) / kVpMaxDegrees; }
+
+// VP (rho, t = phi / 2 pi) -> screen pixels of the eye image.
+vec2 vpToScreen(VisualPolarMap m, float rho, float t) {
+    float r = vpRadius(m, rho), phi = 2.0 * kVpPi * t;
+    return m.gaze + r * vec2(cos(phi), sin(phi));
+}
+
+// Screen pixels -> (rho, t), t in [0, 1). The gaze maps to (0, 0): no NaN at rho = 0.
+vec2 vpToVisualPolar(VisualPolarMap m, vec2 p) {
+    vec2 d = p - m.gaze;
+    float r = length(d);
+    float t = r > 0.0 ? atan(d.y, d.x) / (2.0 * kVpPi) : 0.0;
+    t = fract(t + 1.0);  // [-0.5, 0.5] -> [0, 1)
+    return vec2(vpRhoOfEccentricity(m, r * kVpMaxDegrees / m.dMax), t);  // dMax >= 0.5
+}
+
+// Screen position of texel (i, j)'s centre plus a jitter in VP texels (thesis §4.6.2: jitter
+// in VP space keeps TAA working).
+vec2 vpTexelToScreen(VisualPolarMap m, uvec2 texel, vec2 jitter) {
+    float rho = (float(texel.x) + 0.5 + jitter.x) / float(m.width);
+    float t = (float(texel.y) + 0.5 + jitter.y) / float(vpRows(m, texel.x));
+    return vpToScreen(m, rho, t);
+}
+
+// Neighbour addressing (P5 §3.3): clamp on rho, wrap on phi at the target column's own height.
+ivec2 vpNeighbour(VisualPolarMap m, ivec2 texel, ivec2 step) {
+    int i0 = clamp(texel.x, 0, int(m.width) - 1);
+    int i1 = clamp(i0 + step.x, 0, int(m.width) - 1);
+    float n0 = float(vpRows(m, uint(i0))), n1 = float(vpRows(m, uint(i1)));
+    float t = (float(texel.y + step.y) + 0.5) / n0;
+    return ivec2(i1, clamp(int(floor(fract(t) * n1)), 0, int(n1) - 1));
+}
+
+// Rows of column `column` at phi-mip level `level`: ceil(n / 2^level), >= 1.
+uint vpRowsAtLevel(VisualPolarMap m, uint column, uint level) {
+    return (vpRows(m, column) + (1u << level) - 1u) >> level;
+}
+
+#if defined(VISUAL_POLAR_PARAMS) || defined(VISUAL_POLAR_PARAMS_WRITE)
+#ifdef VISUAL_POLAR_PARAMS_WRITE
+#define VISUAL_POLAR_ACCESS
+#else
+#define VISUAL_POLAR_ACCESS readonly
+#endif
+// Written by VisualPolarWarp (core/sampling/VisualPolar.h twin: VisualPolarParamsGpu).
+layout(std430) VISUAL_POLAR_ACCESS buffer VisualPolarParams {
+    uvec4 grid;    // x W per eye, y H, z eye count, w 1 = valid
+    vec4 fovea;    // x rho_f, y e_f, z screen eye width, w screen height
+    vec4 eyes[2];  // xy gaze (eye pixels), z dMax
+} vp;
+
+VisualPolarMap vpMapOfEye(uint eye) {
+    VisualPolarMap m;
+    m.screen = max(vp.fovea.zw, vec2(1.0));
+    m.gaze = vp.eyes[min(eye, 1u)].xy;
+    m.dMax = max(vp.eyes[min(eye, 1u)].z, 0.5);
+    m.width = max(vp.grid.x, 1u);
+    m.height = max(vp.grid.y, 1u);
+    m.foveaFraction = clamp(vp.fovea.x, 0.1, 1.0);  // kVisualPolarMinFoveaFraction
+    m.foveaDegrees = max(vp.fovea.y, 1e-3);
+    return m;
+}
+#endif
+
+#endif

@@ -1,0 +1,53 @@
+#version 460
+// Unwarp step 3 (seed 003 P5 §3.5): the foveated Gaussian blur in two separable passes. sigma is
+// 0 inside the fovea (the pixel is copied bit for bit) and rises linearly with the eccentricity
+// (degrees, from the camera's field of view) from the fovea's edge to sigmaMax at blurDegrees,
+// clamped beyond (ours; P5 stops at 30 degrees); unwarp.comp computes it once per pixel. Taps never cross the eye seam; the weights are
+// renormalized at image edges. sigma is a per-pixel function, so the two passes only
+// approximate a 2D Gaussian where sigma varies.
+#extension GL_GOOGLE_include_directive : require
+
+#include "../common/camera.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(rgba32f) uniform image2D unwarped;
+layout(rgba32f) uniform image2D blur_tmp;
+layout(rgba32f) uniform writeonly image2D result;
+layout(r32f) uniform readonly image2D sigma;  // per pixel, written by unwarp.comp
+
+layout(push_constant) uniform Params {
+    uint vertical;  // 0: unwarped -> blur_tmp (x), 1: blur_tmp -> result (y)
+} pc;
+
+const int kMaxRadius = 64;
+
+vec4 load(ivec2 p) { return pc.vertical == 0u ? imageLoad(unwarped, p) : imageLoad(blur_tmp, p); }
+
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = ivec2(cameraImageSize());
+    if (p.x >= size.x || p.y >= size.y) return;
+    uint eye = cameraEyeOf(uint(p.x));
+    int eyeX = int(eye * cameraEyeSize().x);
+    float s = imageLoad(sigma, p).x;
+    vec4 c = load(p);
+    if (s > 0.0) {
+        int radius = min(int(ceil(3.0 * s)), kMaxRadius);
+        ivec2 axis = pc.vertical == 0u ? ivec2(1, 0) : ivec2(0, 1);
+        ivec2 lo = ivec2(eyeX, 0), hi = ivec2(eyeX + int(cameraEyeSize().x) - 1, size.y - 1);
+        vec4 sum = vec4(0.0);
+        float wsum = 0.0;
+        float k = -0.5 / (s * s);  // s > 0
+        for (int o = -radius; o <= radius; ++o) {
+            ivec2 q = p + axis * o;
+            if (any(lessThan(q, lo)) || any(greaterThan(q, hi))) continue;
+            float w = exp(k * float(o * o));
+            sum += w * load(q);
+            wsum += w;
+        }
+        c = sum / wsum;  // the centre tap (w = 1) is always inside: wsum >= 1
+    }
+    if (pc.vertical == 0u) imageStore(blur_tmp, p, c);
+    else imageStore(result, p, c);
+}
