@@ -25,7 +25,7 @@ struct ContextOptions {
     bool syncValidation = false;
     // Presentation (the inspector's window): extra instance extensions (the surface extensions
     // the window system asks for) and VK_KHR_swapchain on the device. Empty/false for headless.
-    std::vector<std::string> instanceExtensions;
+    std::vector<std::string> instanceExtensions{};
     bool swapchain = false;
 };
 

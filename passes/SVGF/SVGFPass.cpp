@@ -59,29 +59,40 @@ void SVGFPass::params(graph::ParamVisitor& v) {
 
 void SVGFPass::reflect(graph::Reflection& r) const {
     const auto any = vk::Format::eUndefined;
+    // Every size follows `color`: the screen, or a Visual-Polar grid (seed 003 P5 runs the
+    // denoisers in that space; graphs/koskela_vp_svgf.json).
     r.input("color", any)
-        .screen()
         .floatOnly()
         .doc("noisy albedo-demodulated radiance (PathTrace `demodulated`), a = samples (0 = none)");
-    r.input("position", any).screen().floatOnly().doc("world position, w > 0 on a hit");
-    r.input("normal", any).screen().floatOnly().doc("shading normal (unit length)");
-    r.input("depth", any).screen().floatOnly().doc("linear view depth, 0 = miss (GBuffer `depth`)");
-    r.input("albedo", any).screen().floatOnly().optional().doc("remodulation albedo; open: 1");
+    r.input("position", any).sameAs("color").floatOnly().doc("world position, w > 0 on a hit");
+    r.input("normal", any).sameAs("color").floatOnly().doc("shading normal (unit length)");
+    r.input("depth", any)
+        .sameAs("color")
+        .floatOnly()
+        .doc("linear view depth, 0 = miss (GBuffer `depth`)");
+    r.input("albedo", any)
+        .sameAs("color")
+        .floatOnly()
+        .optional()
+        .doc("remodulation albedo; open: 1");
     r.input("emission", any)
-        .screen()
+        .sameAs("color")
         .floatOnly()
         .optional()
         .doc("emission added back after remodulation; open: 0");
     r.input("motion", any)
-        .screen()
+        .sameAs("color")
         .floatOnly()
         .optional()
         .doc("previous pixel - current pixel; open: reproject positions through the camera");
 
     const auto rgba32 = vk::Format::eR32G32B32A32Sfloat;
-    r.output("filtered", rgba32).doc("final colour: last level remodulated, a = 1");
-    r.output("illumination", rgba32).doc("last level, demodulated; a = propagated variance");
+    r.output("filtered", rgba32).sameAs("color").doc("final colour: last level remodulated, a = 1");
+    r.output("illumination", rgba32)
+        .sameAs("color")
+        .doc("last level, demodulated; a = propagated variance");
     r.output("accumulated", rgba32)
+        .sameAs("color")
         .doc("temporal accumulation (demodulated); a = history length h");
     r.output("stats", any)
         .buffer(kStatCount * sizeof(uint32_t))
@@ -90,17 +101,32 @@ void SVGFPass::reflect(graph::Reflection& r) const {
             "uint[5] since the last reset: non-finite colour samples, non-finite geometry/motion "
             "pixels, rejected reprojections, spatial-variance pixels, negative-variance clamps");
     // Pass-declared histories (prev_hist_* in the shaders): docs/passes/SVGF.md.
-    r.internal("hist_color", rgba32).history().doc("colour after level `feedbackTap`");
+    r.internal("hist_color", rgba32)
+        .sameAs("color")
+        .history()
+        .doc("colour after level `feedbackTap`");
     r.internal("hist_moments", vk::Format::eR32G32Sfloat)
+        .sameAs("color")
         .history()
         .doc("luminance moments (mu1, mu2), fp32: l^2 overflows fp16 above l = 256");
-    r.internal("hist_length", vk::Format::eR32Sfloat).history().doc("history length h");
-    r.internal("hist_position", rgba32).history().doc("world position (disocclusion test)");
+    r.internal("hist_length", vk::Format::eR32Sfloat)
+        .sameAs("color")
+        .history()
+        .doc("history length h");
+    r.internal("hist_position", rgba32)
+        .sameAs("color")
+        .history()
+        .doc("world position (disocclusion test)");
     r.internal("hist_normal", vk::Format::eR16G16B16A16Sfloat)
+        .sameAs("color")
         .history()
         .doc("normal (disocclusion test)");
-    r.internal("atrous_a", rgba32).doc("a-trous ping-pong: rgb colour, a = variance");
-    r.internal("atrous_b", rgba32).doc("a-trous ping-pong: rgb colour, a = variance");
+    r.internal("atrous_a", rgba32)
+        .sameAs("color")
+        .doc("a-trous ping-pong: rgb colour, a = variance");
+    r.internal("atrous_b", rgba32)
+        .sameAs("color")
+        .doc("a-trous ping-pong: rgb colour, a = variance");
 }
 
 void SVGFPass::validate(const graph::ValidateContext& ctx) const {

@@ -208,6 +208,15 @@ TEST_F(GoldenTest, KoskelaVisualPolarBMFR) {
     EXPECT_TRUE(fovea::test::goldenMatches(ctx(), spec));
 }
 
+TEST_F(GoldenTest, KoskelaVisualPolarSVGF) {
+    // P5's pipeline with SVGF in Visual-Polar space (graphs/koskela_vp_svgf.json): SVGF reprojects
+    // with the GBuffer's Visual-Polar motion; four frames of the Cornell dolly.
+    GoldenSpec spec = cornellGolden("koskela_vp_svgf", "graphs/koskela_vp_svgf.json", false);
+    spec.width = spec.height = 64;
+    spec.frames = 4;
+    EXPECT_TRUE(fovea::test::goldenMatches(ctx(), spec));
+}
+
 TEST_F(GoldenTest, Chain20) {
     // 18 chained Combines of animated noise (aliased transients), tonemapped to rgba8.
     EXPECT_TRUE(fovea::test::goldenMatches(ctx(), golden("chain20", "graphs/tests/chain20.json")));
