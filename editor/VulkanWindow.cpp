@@ -1,5 +1,7 @@
 #include "editor/VulkanWindow.h"
 
+#include "core/vk/Barriers.h"
+
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
 
@@ -211,28 +213,6 @@ void VulkanWindow::submitOnce(const std::function<void(vk::CommandBuffer)>& reco
     mCtx.submitAndWait([&](const vk::raii::CommandBuffer& cmd) { record(*cmd); });
 }
 
-namespace {
-
-void imageBarrier(const vk::raii::CommandBuffer& cmd, vk::Image image, vk::ImageLayout from,
-                  vk::ImageLayout to, vk::PipelineStageFlags2 srcStage, vk::AccessFlags2 srcAccess,
-                  vk::PipelineStageFlags2 dstStage, vk::AccessFlags2 dstAccess) {
-    vk::ImageMemoryBarrier2 barrier{
-        .srcStageMask = srcStage,
-        .srcAccessMask = srcAccess,
-        .dstStageMask = dstStage,
-        .dstAccessMask = dstAccess,
-        .oldLayout = from,
-        .newLayout = to,
-        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-        .image = image,
-        .subresourceRange = {vk::ImageAspectFlagBits::eColor, 0, 1, 0, 1}};
-    cmd.pipelineBarrier2(
-        vk::DependencyInfo{.imageMemoryBarrierCount = 1, .pImageMemoryBarriers = &barrier});
-}
-
-}  // namespace
-
 void VulkanWindow::recordFrame(const vk::raii::CommandBuffer& cmd, uint32_t index,
                                const std::function<void(vk::CommandBuffer)>& recordUi,
                                const PreviewBlit* preview, bool readback) {
@@ -240,15 +220,15 @@ void VulkanWindow::recordFrame(const vk::raii::CommandBuffer& cmd, uint32_t inde
     using Access = vk::AccessFlagBits2;
     const vk::Image image = mImages[index];
     // The acquire semaphore is waited at the transfer stage: the clear is the first write.
-    imageBarrier(cmd, image, vk::ImageLayout::eUndefined, vk::ImageLayout::eTransferDstOptimal,
-                 Stage::eTransfer, {}, Stage::eTransfer, Access::eTransferWrite);
+    gpu::imageBarrier(cmd, image, vk::ImageLayout::eUndefined, vk::ImageLayout::eTransferDstOptimal,
+                      Stage::eTransfer, {}, Stage::eTransfer, Access::eTransferWrite);
     vk::ClearColorValue background(std::array<float, 4>{0.06f, 0.06f, 0.07f, 1.0f});
     vk::ImageSubresourceRange range{vk::ImageAspectFlagBits::eColor, 0, 1, 0, 1};
     cmd.clearColorImage(image, vk::ImageLayout::eTransferDstOptimal, background, range);
     if (preview && preview->width > 0 && preview->height > 0) {
-        imageBarrier(cmd, image, vk::ImageLayout::eTransferDstOptimal,
-                     vk::ImageLayout::eTransferDstOptimal, Stage::eTransfer, Access::eTransferWrite,
-                     Stage::eTransfer, Access::eTransferWrite);
+        gpu::imageBarrier(cmd, image, vk::ImageLayout::eTransferDstOptimal,
+                          vk::ImageLayout::eTransferDstOptimal, Stage::eTransfer,
+                          Access::eTransferWrite, Stage::eTransfer, Access::eTransferWrite);
         vk::BufferImageCopy region{.bufferOffset = 0,
                                    .bufferRowLength = 0,
                                    .bufferImageHeight = 0,
@@ -282,9 +262,10 @@ void VulkanWindow::recordFrame(const vk::raii::CommandBuffer& cmd, uint32_t inde
             vk::DependencyInfo{.bufferMemoryBarrierCount = 1, .pBufferMemoryBarriers = &host});
     }
     // Presentation needs no access mask: the present semaphore makes the writes visible.
-    imageBarrier(cmd, image, vk::ImageLayout::eTransferSrcOptimal, vk::ImageLayout::ePresentSrcKHR,
-                 Stage::eTransfer | Stage::eColorAttachmentOutput,
-                 Access::eTransferRead | Access::eColorAttachmentWrite, Stage::eBottomOfPipe, {});
+    gpu::imageBarrier(
+        cmd, image, vk::ImageLayout::eTransferSrcOptimal, vk::ImageLayout::ePresentSrcKHR,
+        Stage::eTransfer | Stage::eColorAttachmentOutput,
+        Access::eTransferRead | Access::eColorAttachmentWrite, Stage::eBottomOfPipe, {});
 }
 
 bool VulkanWindow::drawFrame(const std::function<void(vk::CommandBuffer)>& recordUi,

@@ -31,4 +31,22 @@ void computeToIndirectBarrier(const vk::raii::CommandBuffer& cmd) {
         kStorage | vk::AccessFlagBits2::eIndirectCommandRead);
 }
 
+void imageBarrier(const vk::raii::CommandBuffer& cmd, vk::Image image, vk::ImageLayout from,
+                  vk::ImageLayout to, vk::PipelineStageFlags2 srcStage, vk::AccessFlags2 srcAccess,
+                  vk::PipelineStageFlags2 dstStage, vk::AccessFlags2 dstAccess) {
+    vk::ImageMemoryBarrier2 barrier{
+        .srcStageMask = srcStage,
+        .srcAccessMask = srcAccess,
+        .dstStageMask = dstStage,
+        .dstAccessMask = dstAccess,
+        .oldLayout = from,
+        .newLayout = to,
+        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .image = image,
+        .subresourceRange = {vk::ImageAspectFlagBits::eColor, 0, 1, 0, 1}};
+    cmd.pipelineBarrier2(
+        vk::DependencyInfo{.imageMemoryBarrierCount = 1, .pImageMemoryBarriers = &barrier});
+}
+
 }  // namespace fovea::gpu

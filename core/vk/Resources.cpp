@@ -74,23 +74,6 @@ vk::raii::DeviceMemory allocate(const Context& context, vk::DeviceSize size, uin
     }
 }
 
-void imageBarrier(const vk::raii::CommandBuffer& cmd, vk::Image image, vk::ImageLayout from,
-                  vk::ImageLayout to, vk::PipelineStageFlags2 srcStage, vk::AccessFlags2 srcAccess,
-                  vk::PipelineStageFlags2 dstStage, vk::AccessFlags2 dstAccess) {
-    vk::ImageMemoryBarrier2 barrier{.srcStageMask = srcStage,
-                                    .srcAccessMask = srcAccess,
-                                    .dstStageMask = dstStage,
-                                    .dstAccessMask = dstAccess,
-                                    .oldLayout = from,
-                                    .newLayout = to,
-                                    .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-                                    .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-                                    .image = image,
-                                    .subresourceRange = kColorRange};
-    cmd.pipelineBarrier2(
-        vk::DependencyInfo{.imageMemoryBarrierCount = 1, .pImageMemoryBarriers = &barrier});
-}
-
 enum class Component { F32, F16, Unorm8, U32 };
 
 Component componentOf(vk::Format format) {
