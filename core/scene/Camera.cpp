@@ -31,6 +31,12 @@ glm::mat4 safeLookAt(const glm::vec3& position, const glm::vec3& target, const g
 
 }  // namespace
 
+EyeSplit splitEyes(uint32_t width, int eyesParam, uint32_t cameraEyes) {
+    int eyes = eyesParam > 0 ? eyesParam : int(std::clamp(cameraEyes, 1u, kMaxEyes));
+    if (eyes > int(width)) eyes = 1;  // a 1-pixel-wide image cannot be split
+    return {eyes, std::max(int(width) / eyes, 1)};
+}
+
 glm::vec2 halton23(uint64_t index) {
     // Index 0 of the sequence is (0,0); start at 1 so frame 0 is already off-centre.
     return {radicalInverse(index + 1, 2), radicalInverse(index + 1, 3)};

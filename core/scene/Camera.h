@@ -37,6 +37,15 @@ struct CameraRigOptions {
     bool jitter = false;
 };
 
+// How a side-by-side image `width` pixels wide splits into eyes, for passes that keep their taps
+// inside an eye: `eyesParam` > 0 forces a count, 0 takes the camera's (1..kMaxEyes); an image
+// narrower than its eye count is one eye. eyeWidth >= 1; the last eye takes the remainder.
+struct EyeSplit {
+    int eyes = 1;
+    int eyeWidth = 1;
+};
+EyeSplit splitEyes(uint32_t width, int eyesParam, uint32_t cameraEyes);
+
 // Halton (2,3) point `index` (1-based internally) in [0,1)^2.
 glm::vec2 halton23(uint64_t index);
 

@@ -130,9 +130,7 @@ ATrousScheduleOptions ATrousNHPass::scheduleOptions(int width, int height, int e
 void ATrousNHPass::execute(graph::ExecuteContext& ctx) {
     const auto& out = ctx.image("denoised");
     const int width = int(out.width()), height = int(out.height());
-    int eyes = mEyes > 0 ? mEyes : int(std::max(ctx.camera().eyeCount, 1u));
-    if (eyes > width) eyes = 1;         // a 1-pixel-wide image cannot be split
-    const int eyeWidth = width / eyes;  // >= 1; the last eye takes the remainder
+    const auto [eyes, eyeWidth] = scene::splitEyes(out.width(), mEyes, ctx.camera().eyeCount);
     const auto schedule = buildATrousSchedule(scheduleOptions(width, height, eyes));
 
     ctx.bindFields(*mPipeline);

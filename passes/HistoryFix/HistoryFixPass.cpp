@@ -66,9 +66,7 @@ void HistoryFixPass::execute(graph::ExecuteContext& ctx) {
     const auto& cmd = ctx.cmd();
     const auto& out = ctx.image("result");
     const int width = int(out.width()), height = int(out.height());
-    int eyes = mEyes > 0 ? mEyes : int(std::clamp(ctx.camera().eyeCount, 1u, scene::kMaxEyes));
-    if (eyes > width) eyes = 1;
-    const int eyeWidth = std::max(width / eyes, 1);
+    const auto [eyes, eyeWidth] = scene::splitEyes(out.width(), mEyes, ctx.camera().eyeCount);
     const int widest = std::max(eyeWidth, width - (eyes - 1) * eyeWidth);
     glm::ivec4 blocks, rows;
     for (int l = 1; l <= kLevels; ++l) {

@@ -163,18 +163,23 @@ void RecurrentBlurPass::execute(graph::ExecuteContext& ctx) {
         executeSpatial(ctx);
 }
 
-namespace {
-struct EyeLayout {
-    glm::ivec2 size;
-    int eyeWidth, eyes;
-};
-EyeLayout eyeLayout(const gpu::Image& out, int eyesParam, uint32_t cameraEyes) {
-    const int width = int(out.width()), height = int(out.height());
-    int eyes = eyesParam > 0 ? eyesParam : int(std::clamp(cameraEyes, 1u, scene::kMaxEyes));
-    if (eyes > width) eyes = 1;  // a 1-pixel-wide image cannot be split
-    return {{width, height}, std::max(width / eyes, 1), eyes};
+RecurrentBlurPass::EyeLayout RecurrentBlurPass::eyeLayout(const gpu::Image& out, int eyesParam,
+                                                          uint32_t cameraEyes) {
+    const auto split = scene::splitEyes(out.width(), eyesParam, cameraEyes);
+    return {{int(out.width()), int(out.height())}, split.eyeWidth, split.eyes};
 }
-}  // namespace
+
+void RecurrentBlurPass::blur(graph::ExecuteContext& ctx, const EyeLayout& e, const char* src,
+                             const char* hit, const char* dst, int mode, float maxRadius) {
+    // One dispatch of blur.comp (pre-blur, blur or post-blur by `mode`), then a barrier: every
+    // blur's output is the next kernel's input.
+    ctx.bindFields(*mBlur);
+    mBlur->bind("src", ctx.image(src)).bind("hitSrc", ctx.image(hit)).bind("dst", ctx.image(dst));
+    mBlur->set("size", e.size).set("eyeWidth", e.eyeWidth).set("eyes", e.eyes);
+    setBlurConstants(ctx, mode, maxRadius);
+    mBlur->dispatch(ctx.cmd(), uint32_t(e.size.x), uint32_t(e.size.y));
+    gpu::computeToComputeBarrier(ctx.cmd());
+}
 
 void RecurrentBlurPass::executeTemporal(graph::ExecuteContext& ctx) {
     const auto& cmd = ctx.cmd();
@@ -182,14 +187,7 @@ void RecurrentBlurPass::executeTemporal(graph::ExecuteContext& ctx) {
     const EyeLayout e = eyeLayout(out, mEyes, ctx.camera().eyeCount);
 
     // Pre-blur: radiance -> preblurred (a = h). prepassBlurRadius 0 copies (sanitized).
-    ctx.bindFields(*mBlur);
-    mBlur->bind("src", ctx.image("radiance"))
-        .bind("hitSrc", ctx.image("hit_distance"))
-        .bind("dst", ctx.image("preblurred"));
-    mBlur->set("size", e.size).set("eyeWidth", e.eyeWidth).set("eyes", e.eyes);
-    setBlurConstants(ctx, 0, mPrepassBlurRadius);
-    mBlur->dispatch(cmd, out.width(), out.height());
-    gpu::computeToComputeBarrier(cmd);
+    blur(ctx, e, "radiance", "hit_distance", "preblurred", 0, mPrepassBlurRadius);
 
     // Temporal accumulation. Both histories must hold a frame: the recurrent input (false on the
     // first frame, after a reset or cut) and our own geometry.
@@ -214,24 +212,10 @@ void RecurrentBlurPass::executeSpatial(graph::ExecuteContext& ctx) {
     const EyeLayout e = eyeLayout(out, mEyes, ctx.camera().eyeCount);
 
     // Blur: color -> blurred, radius from N (color.a) and h.
-    ctx.bindFields(*mBlur);
-    mBlur->bind("src", ctx.image("color"))
-        .bind("hitSrc", ctx.image("hit"))
-        .bind("dst", ctx.image("blurred"));
-    mBlur->set("size", e.size).set("eyeWidth", e.eyeWidth).set("eyes", e.eyes);
-    setBlurConstants(ctx, 1, mMaxBlurRadius);
-    mBlur->dispatch(cmd, out.width(), out.height());
-    gpu::computeToComputeBarrier(cmd);
+    blur(ctx, e, "color", "hit", "blurred", 1, mMaxBlurRadius);
 
     // Post-blur: blurred -> history (the recurrent feedback).
-    ctx.bindFields(*mBlur);
-    mBlur->bind("src", ctx.image("blurred"))
-        .bind("hitSrc", ctx.image("hit"))
-        .bind("dst", ctx.image("history"));
-    mBlur->set("size", e.size).set("eyeWidth", e.eyeWidth).set("eyes", e.eyes);
-    setBlurConstants(ctx, 2, mMaxBlurRadius);
-    mBlur->dispatch(cmd, out.width(), out.height());
-    gpu::computeToComputeBarrier(cmd);
+    blur(ctx, e, "blurred", "hit", "history", 2, mMaxBlurRadius);
 
     // Temporal stabilization of luminance (own history: stabilized).
     ctx.bindFields(*mStabilize);

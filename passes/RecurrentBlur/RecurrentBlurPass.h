@@ -27,6 +27,15 @@ public:
     std::string variant() const override { return mStage; }
 
 private:
+    // The image size and its side-by-side eye split (taps never cross the seam).
+    struct EyeLayout {
+        glm::ivec2 size;
+        int eyeWidth, eyes;
+    };
+    static EyeLayout eyeLayout(const gpu::Image& out, int eyesParam, uint32_t cameraEyes);
+    // One blur.comp dispatch (mode 0 pre-blur, 1 blur, 2 post-blur) from fields src/hit to dst.
+    void blur(graph::ExecuteContext& ctx, const EyeLayout& e, const char* src, const char* hit,
+              const char* dst, int mode, float maxRadius);
     void executeTemporal(graph::ExecuteContext& ctx);
     void executeSpatial(graph::ExecuteContext& ctx);
     void setBlurConstants(graph::ExecuteContext& ctx, int mode, float maxRadius);

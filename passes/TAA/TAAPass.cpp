@@ -49,9 +49,7 @@ void TAAPass::compile(graph::CompileContext& ctx) {
 void TAAPass::execute(graph::ExecuteContext& ctx) {
     const auto& out = ctx.image("result");
     const int width = int(out.width()), height = int(out.height());
-    int eyes = mEyes > 0 ? mEyes : int(std::clamp(ctx.camera().eyeCount, 1u, scene::kMaxEyes));
-    if (eyes > width) eyes = 1;  // a 1-pixel-wide image cannot be split
-    const int eyeWidth = std::max(width / eyes, 1);
+    const auto [eyes, eyeWidth] = scene::splitEyes(out.width(), mEyes, ctx.camera().eyeCount);
     // historyValid is false on the first frame and after a reset, resize or camera cut (the graph
     // invalidates every history then).
     const bool useHistory = ctx.historyValid("result");
