@@ -38,22 +38,13 @@ void BmfrInputs::resize(int w, int h) {
 BmfrHarness::BmfrHarness(gpu::Context& ctx, const BmfrInputs& in, const std::string& params,
                          BmfrEdges edges)
     : mCtx(ctx), mEdges(edges) {
-    std::string e = R"({ "from": "feed.color", "to": "bmfr.color" },
-                       { "from": "feed.position", "to": "bmfr.position" },
-                       { "from": "feed.normal", "to": "bmfr.normal" })";
-    if (edges.albedo) e += R"(, { "from": "feed.albedo", "to": "bmfr.albedo" })";
-    if (edges.emission) e += R"(, { "from": "feed.emission", "to": "bmfr.emission" })";
-    if (edges.motion) e += R"(, { "from": "feed.motion", "to": "bmfr.motion" })";
-    const std::string text =
-        R"({ "version": 1, "name": "bmfr_test", "passes": [ { "name": "feed", "type": "Feed" },)"
-        R"( { "name": "bmfr", "type": "BMFR", "params": )" +
-        params + R"( } ], "edges": [ )" + e +
-        R"( ], "outputs": [ "bmfr.filtered", "bmfr.accumulated", "bmfr.fitted", "bmfr.stats" ] })";
-    CompileOptions o;
-    o.width = uint32_t(in.width);
-    o.height = uint32_t(in.height);
-    mGraph = std::make_unique<RenderGraph>(ctx, registry());
-    mGraph->build(parseGraphText(text, "bmfr_test"), o);
+    std::vector<std::string> connect = {"color", "position", "normal"};
+    if (edges.albedo) connect.push_back("albedo");
+    if (edges.emission) connect.push_back("emission");
+    if (edges.motion) connect.push_back("motion");
+    mGraph =
+        test::buildFeedGraph(ctx, registry(), "BMFR", "bmfr", params, connect,
+                             {"filtered", "accumulated", "fitted", "stats"}, in.width, in.height);
     mGraph->setSeed(7);
     upload(in);
 }
@@ -61,17 +52,13 @@ BmfrHarness::BmfrHarness(gpu::Context& ctx, const BmfrInputs& in, const std::str
 BmfrHarness::~BmfrHarness() = default;
 
 void BmfrHarness::upload(const BmfrInputs& in, bool colorOnly) {
-    // Feed never writes its (persistent) outputs, so the test owns their content.
-    auto target = [&](const char* name) -> gpu::Image& {
-        return const_cast<gpu::Image&>(mGraph->image(name));
-    };
-    target("feed.color").uploadRGBA32F(mCtx, in.color);
+    test::uploadFeed(mCtx, *mGraph, "color", in.color);
     if (colorOnly) return;
-    target("feed.position").uploadRGBA32F(mCtx, in.position);
-    target("feed.normal").uploadRGBA32F(mCtx, in.normal);
-    target("feed.albedo").uploadRGBA32F(mCtx, in.albedo);
-    target("feed.emission").uploadRGBA32F(mCtx, in.emission);
-    target("feed.motion").uploadRGBA32F(mCtx, in.motion);
+    test::uploadFeed(mCtx, *mGraph, "position", in.position);
+    test::uploadFeed(mCtx, *mGraph, "normal", in.normal);
+    test::uploadFeed(mCtx, *mGraph, "albedo", in.albedo);
+    test::uploadFeed(mCtx, *mGraph, "emission", in.emission);
+    test::uploadFeed(mCtx, *mGraph, "motion", in.motion);
 }
 
 void BmfrHarness::runFrame() {

@@ -42,24 +42,13 @@ void SvgfInputs::resize(int w, int h) {
 SvgfHarness::SvgfHarness(gpu::Context& ctx, const SvgfInputs& in, const std::string& params,
                          SvgfEdges edges)
     : mCtx(ctx) {
-    std::string e = R"({ "from": "feed.color", "to": "svgf.color" },
-                       { "from": "feed.position", "to": "svgf.position" },
-                       { "from": "feed.normal", "to": "svgf.normal" },
-                       { "from": "feed.depth", "to": "svgf.depth" })";
-    if (edges.albedo) e += R"(, { "from": "feed.albedo", "to": "svgf.albedo" })";
-    if (edges.emission) e += R"(, { "from": "feed.emission", "to": "svgf.emission" })";
-    if (edges.motion) e += R"(, { "from": "feed.motion", "to": "svgf.motion" })";
-    const std::string text =
-        R"({ "version": 1, "name": "svgf_test", "passes": [ { "name": "feed", "type": "Feed" },)"
-        R"( { "name": "svgf", "type": "SVGF", "params": )" +
-        params + R"( } ], "edges": [ )" + e +
-        R"( ], "outputs": [ "svgf.filtered", "svgf.illumination", "svgf.accumulated", )"
-        R"("svgf.stats" ] })";
-    CompileOptions o;
-    o.width = uint32_t(in.width);
-    o.height = uint32_t(in.height);
-    mGraph = std::make_unique<RenderGraph>(ctx, registry());
-    mGraph->build(parseGraphText(text, "svgf_test"), o);
+    std::vector<std::string> connect = {"color", "position", "normal", "depth"};
+    if (edges.albedo) connect.push_back("albedo");
+    if (edges.emission) connect.push_back("emission");
+    if (edges.motion) connect.push_back("motion");
+    mGraph = test::buildFeedGraph(ctx, registry(), "SVGF", "svgf", params, connect,
+                                  {"filtered", "illumination", "accumulated", "stats"}, in.width,
+                                  in.height);
     mGraph->setSeed(7);
     upload(in);
 }
@@ -67,18 +56,14 @@ SvgfHarness::SvgfHarness(gpu::Context& ctx, const SvgfInputs& in, const std::str
 SvgfHarness::~SvgfHarness() = default;
 
 void SvgfHarness::upload(const SvgfInputs& in, bool colorOnly) {
-    // Feed never writes its (persistent) outputs, so the test owns their content.
-    auto target = [&](const char* name) -> gpu::Image& {
-        return const_cast<gpu::Image&>(mGraph->image(name));
-    };
-    target("feed.color").uploadRGBA32F(mCtx, in.color);
+    test::uploadFeed(mCtx, *mGraph, "color", in.color);
     if (colorOnly) return;
-    target("feed.position").uploadRGBA32F(mCtx, in.position);
-    target("feed.normal").uploadRGBA32F(mCtx, in.normal);
-    target("feed.depth").uploadRGBA32F(mCtx, in.depth);
-    target("feed.albedo").uploadRGBA32F(mCtx, in.albedo);
-    target("feed.emission").uploadRGBA32F(mCtx, in.emission);
-    target("feed.motion").uploadRGBA32F(mCtx, in.motion);
+    test::uploadFeed(mCtx, *mGraph, "position", in.position);
+    test::uploadFeed(mCtx, *mGraph, "normal", in.normal);
+    test::uploadFeed(mCtx, *mGraph, "depth", in.depth);
+    test::uploadFeed(mCtx, *mGraph, "albedo", in.albedo);
+    test::uploadFeed(mCtx, *mGraph, "emission", in.emission);
+    test::uploadFeed(mCtx, *mGraph, "motion", in.motion);
 }
 
 void SvgfHarness::runFrame() {
