@@ -219,4 +219,23 @@ double temporalError(const std::vector<ImageRGBA>& frames) {
     return sum / double(frames.size() - 1);
 }
 
+double noiseCorrectedRmse(double mse, double floorMse) {
+    return std::sqrt(std::max(0.0, mse - 0.5 * floorMse));
+}
+
+std::vector<bool> paretoOptimal(const std::vector<double>& cost, const std::vector<double>& error) {
+    const size_t n = std::min(cost.size(), error.size());
+    std::vector<bool> optimal(n, false);
+    auto valid = [&](size_t i) { return !std::isnan(cost[i]) && !std::isnan(error[i]); };
+    for (size_t i = 0; i < n; ++i) {
+        if (!valid(i)) continue;
+        bool dominated = false;
+        for (size_t j = 0; j < n && !dominated; ++j)
+            dominated = j != i && valid(j) && cost[j] <= cost[i] && error[j] <= error[i] &&
+                        (cost[j] < cost[i] || error[j] < error[i]);
+        optimal[i] = !dominated;
+    }
+    return optimal;
+}
+
 }  // namespace fovea::image

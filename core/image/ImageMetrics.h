@@ -71,4 +71,17 @@ double temporalError(const ImageRGBA& previous, const ImageRGBA& current,
 // Mean of temporalError over the consecutive pairs of `frames` (0 for fewer than two frames).
 double temporalError(const std::vector<ImageRGBA>& frames);
 
+// The reference's noise floor (docs/benchmarks.md, "the paper's protocol"). Two references R1,
+// R2 of one scene rendered with different seeds are truth + n1 and truth + n2 with independent
+// noise of equal variance, so E|R2 - R1|^2 = 2 E|n|^2 (`floorMse`, the MSE between them). A test
+// image T independent of n1 has E|T - R1|^2 = E|T - truth|^2 + E|n1|^2: its error against the
+// truth is sqrt(max(0, mse - floorMse / 2)). 0 when the measured error lies within the
+// reference's own noise (the figure cannot be resolved with that reference).
+double noiseCorrectedRmse(double mse, double floorMse);
+
+// Pareto-optimal points of (cost, error) pairs, both smaller = better: true where no other point
+// is at least as good in both and strictly better in one. Equal points are all optimal. NaN
+// points are never optimal and dominate nothing.
+std::vector<bool> paretoOptimal(const std::vector<double>& cost, const std::vector<double>& error);
+
 }  // namespace fovea::image

@@ -30,32 +30,97 @@ double pixelEccentricityDegrees(const scene::FrameCamera& camera, uint32_t width
     return glm::degrees(std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)));
 }
 
+namespace {
+
+// Per-region RMSE over the pixels `regionOf(x, y)` assigns to each of `count` regions.
+template <class RegionOf>
+std::vector<BandError> regionErrors(const image::ImageRGBA& test, const image::ImageRGBA& reference,
+                                    size_t count, RegionOf regionOf) {
+    std::vector<BandError> regions(count);
+    std::vector<double> sum(count, 0.0);
+    const uint32_t w = std::min(test.width, reference.width);
+    const uint32_t h = std::min(test.height, reference.height);
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x) {
+            const size_t b = std::min<size_t>(regionOf(x, y), count - 1);
+            const float* t = &test.pixels[(size_t(y) * test.width + x) * 4];
+            const float* r = &reference.pixels[(size_t(y) * reference.width + x) * 4];
+            for (int c = 0; c < 3; ++c) sum[b] += double(t[c] - r[c]) * double(t[c] - r[c]);
+            ++regions[b].pixels;
+        }
+    for (size_t b = 0; b < count; ++b)
+        if (regions[b].pixels > 0) regions[b].rmse = std::sqrt(sum[b] / (3.0 * regions[b].pixels));
+    return regions;
+}
+
+}  // namespace
+
+uint32_t foveationLayerOf(const scene::FrameCamera& camera, uint32_t width, uint32_t height,
+                          uint32_t x, uint32_t y, const LayerRadii& radii) {
+    double d = 0;
+    if (radii.degrees) {
+        d = pixelEccentricityDegrees(camera, width, height, x, y);
+    } else {
+        // foveation_mask.comp: local pixel centre against gaze * eye size, in pixels.
+        const uint32_t eyes = std::clamp(camera.eyeCount, 1u, scene::kMaxEyes);
+        const uint32_t eyeWidth = std::max(width / eyes, 1u);
+        const uint32_t eye = std::min(x / eyeWidth, eyes - 1);
+        const glm::dvec2 eyeSize(eyeWidth, std::max(height, 1u));
+        const glm::dvec2 local(x + 0.5 - double(eye) * eyeWidth, y + 0.5);
+        d = glm::length(local - glm::dvec2(camera.eyes[eye].gaze) * eyeSize);
+    }
+    return d <= radii.r0 ? 0u : (d <= radii.r1 ? 1u : 2u);
+}
+
+std::vector<BandError> foveationLayerErrors(const image::ImageRGBA& test,
+                                            const image::ImageRGBA& reference,
+                                            const scene::FrameCamera& camera,
+                                            const LayerRadii& radii) {
+    const uint32_t w = std::min(test.width, reference.width);
+    const uint32_t h = std::min(test.height, reference.height);
+    auto layers = regionErrors(test, reference, 3, [&](uint32_t x, uint32_t y) {
+        return foveationLayerOf(camera, w, h, x, y, radii);
+    });
+    const double edges[] = {0.0, radii.r0, radii.r1, std::numeric_limits<double>::infinity()};
+    for (size_t l = 0; l < layers.size(); ++l) {
+        layers[l].fromDegrees = edges[l];
+        layers[l].toDegrees = edges[l + 1];
+    }
+    return layers;
+}
+
 std::vector<BandError> eccentricityBandErrors(const image::ImageRGBA& test,
                                               const image::ImageRGBA& reference,
                                               const scene::FrameCamera& camera) {
     constexpr size_t kBands = std::size(kEccentricityBandEdges);
-    std::vector<BandError> bands(kBands);
-    std::vector<double> sum(kBands, 0.0);
+    const uint32_t w = std::min(test.width, reference.width);
+    const uint32_t h = std::min(test.height, reference.height);
+    auto bands = regionErrors(test, reference, kBands, [&](uint32_t x, uint32_t y) {
+        double e = pixelEccentricityDegrees(camera, w, h, x, y);
+        size_t b = kBands - 1;
+        while (b > 0 && e < kEccentricityBandEdges[b]) --b;
+        return b;
+    });
     for (size_t b = 0; b < kBands; ++b) {
         bands[b].fromDegrees = kEccentricityBandEdges[b];
         bands[b].toDegrees = b + 1 < kBands ? kEccentricityBandEdges[b + 1]
                                             : std::numeric_limits<double>::infinity();
     }
-    const uint32_t w = std::min(test.width, reference.width);
-    const uint32_t h = std::min(test.height, reference.height);
-    for (uint32_t y = 0; y < h; ++y)
-        for (uint32_t x = 0; x < w; ++x) {
-            double e = pixelEccentricityDegrees(camera, w, h, x, y);
-            size_t b = kBands - 1;
-            while (b > 0 && e < kEccentricityBandEdges[b]) --b;
-            const float* t = &test.pixels[(size_t(y) * test.width + x) * 4];
-            const float* r = &reference.pixels[(size_t(y) * reference.width + x) * 4];
-            for (int c = 0; c < 3; ++c) sum[b] += double(t[c] - r[c]) * double(t[c] - r[c]);
-            ++bands[b].pixels;
-        }
-    for (size_t b = 0; b < kBands; ++b)
-        if (bands[b].pixels > 0) bands[b].rmse = std::sqrt(sum[b] / (3.0 * bands[b].pixels));
     return bands;
+}
+
+nlohmann::json layerErrorsToJson(const std::vector<BandError>& layers, const LayerRadii& radii) {
+    nlohmann::json out = nlohmann::json::array();
+    for (size_t l = 0; l < layers.size(); ++l)
+        out.push_back(
+            {{"layer", kLayerNames[std::min<size_t>(l, 2)]},
+             {"from", layers[l].fromDegrees},
+             {"to", std::isinf(layers[l].toDegrees) ? nlohmann::json(nullptr)
+                                                    : nlohmann::json(layers[l].toDegrees)},
+             {"unit", radii.degrees ? "degrees" : "pixels"},
+             {"pixels", layers[l].pixels},
+             {"rmse", layers[l].rmse}});
+    return out;
 }
 
 nlohmann::json bandErrorsToJson(const std::vector<BandError>& bands) {

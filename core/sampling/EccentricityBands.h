@@ -35,4 +35,31 @@ std::vector<BandError> eccentricityBandErrors(const image::ImageRGBA& test,
 // [{"from", "to" (null = open), "pixels", "rmse"}]
 nlohmann::json bandErrorsToJson(const std::vector<BandError>& bands);
 
+// The layers of seed 000 §3.2 (Peres et al. 2023, Table 1): fovea d <= r0, middle r0 < d <= r1,
+// outer d > r1, with d the distance of a pixel centre to its eye's gaze point in pixels of the
+// eye image or its eccentricity in degrees - FoveationMask's rule (foveation_mask.comp layerOf),
+// so the split of an error into layers is the split the mask made. Seed 000 §5 reads the fovea
+// (must match Base) and the periphery (where the loss may be) apart.
+struct LayerRadii {
+    double r0 = 0, r1 = 0;
+    bool degrees = false;  // false: pixels (FoveationMask radiusUnit)
+};
+
+inline constexpr const char* kLayerNames[] = {"fovea", "middle", "outer"};
+
+// 0 fovea, 1 middle, 2 outer for pixel (x, y) of a width x height side-by-side image.
+uint32_t foveationLayerOf(const scene::FrameCamera& camera, uint32_t width, uint32_t height,
+                          uint32_t x, uint32_t y, const LayerRadii& radii);
+
+// Per-layer RMSE of `test` against `reference` (same size; the caller checks): three entries,
+// fromDegrees/toDegrees holding the layer's radii in the radii's unit (r1's `to` = +inf). A layer
+// without pixels has rmse 0.
+std::vector<BandError> foveationLayerErrors(const image::ImageRGBA& test,
+                                            const image::ImageRGBA& reference,
+                                            const scene::FrameCamera& camera,
+                                            const LayerRadii& radii);
+
+// [{"layer": "fovea"|"middle"|"outer", "from", "to" (null = open), "unit", "pixels", "rmse"}]
+nlohmann::json layerErrorsToJson(const std::vector<BandError>& layers, const LayerRadii& radii);
+
 }  // namespace fovea::sampling
