@@ -4,11 +4,13 @@
 #include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "apps/fovea/Report.h"
 #include "core/image/ImageMetrics.h"
+#include "core/sampling/EccentricityBands.h"
 
 namespace fovea::app {
 
@@ -28,6 +30,14 @@ struct BenchReference {
     std::vector<std::string> sets;
 };
 
+// Another reference every graph's output is also measured against (e.g. the pixel-centre
+// reference of builtin:forest: the denoiser's own error, docs/benchmarks.md), with its noise floor.
+struct BenchAgainst {
+    std::string label, file;  // file: EXR, per-frame directory or printf pattern
+    std::string noiseFloor;   // a second such reference with another seed; "" = none
+    std::string pointer;      // "/also_against/<i>"
+};
+
 struct BenchSpec {
     std::string file, name;
     std::string scene, camera;  // camera: a camera path JSON, "" = the scene's still camera
@@ -36,6 +46,13 @@ struct BenchSpec {
     uint64_t seed = 1;
     std::string output;
     BenchReference reference;
+    // The reference's noise floor: a second reference with another seed (file, directory or
+    // pattern) or, with noiseFloorRender, rendered like the reference with another seed.
+    std::string noiseFloor;
+    bool noiseFloorRender = false;
+    std::vector<BenchAgainst> against;
+    // Radii of the per-layer errors; unset: those of the first graph with a FoveationMask pass.
+    std::optional<sampling::LayerRadii> layers;
     std::vector<BenchGraph> graphs;
 };
 
@@ -48,6 +65,13 @@ struct BenchPass {
     uint64_t executions = 0;  // measured frames in which it executed
 };
 
+// The errors of one output against one more reference (BenchSpec::against).
+struct BenchTrack {
+    std::string label;
+    image::ImageMetrics meanErrors;
+    nlohmann::json errors;  // FrameErrors::json()
+};
+
 struct BenchResult {
     BenchGraph graph;
     std::string output;  // the output compared
@@ -55,11 +79,15 @@ struct BenchResult {
     double speedup = 1;  // baseline (first graph) median frame ms / this graph's
     image::ImageMetrics meanErrors;
     double temporalError = 0;
-    nlohmann::json errors;  // FrameErrors::json()
+    nlohmann::json errors;            // FrameErrors::json()
+    std::vector<BenchTrack> against;  // one per BenchSpec::against, in order
+    bool pareto = false;              // Pareto-optimal in (frame ms median, mean RMSE %)
     std::vector<BenchPass> passes;
 };
 
-// bench.json, bench.csv, bench.md; `header` holds the run's description (device, scene, ...).
+// bench.json, bench.csv, bench.md; `header` holds the run's description (device, scene, ...),
+// with "noise_floor" ({"reference": FrameErrors::json() of the second reference against the
+// first, "<label>": the same per also_against}) and "layers" ({"r0", "r1", "unit"}) when known.
 void writeBenchTables(const std::filesystem::path& dir, const nlohmann::json& header,
                       const std::vector<BenchResult>& results);
 // The run-time-vs-error plot as SVG text (BenchPlot.cpp).

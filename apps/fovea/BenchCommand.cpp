@@ -61,16 +61,20 @@ graph::GraphDesc loadBenchGraph(const BenchSpec& spec, const std::string& file,
 }
 
 // The rendered reference uses another seed than the measured runs: with the same one its first
-// frames would repeat their samples, and its error against them would read too low.
+// frames would repeat their samples, and its error against them would read too low. The second
+// reference of the noise floor uses a third seed.
 uint64_t referenceSeed(uint64_t seed) {
     return seed + 1;
+}
+uint64_t noiseFloorSeed(uint64_t seed) {
+    return seed + 2;
 }
 
 // The reference of the measured frames: the bench's file, or rendered once into DIR/reference
 // (one image for a still camera, one per measured frame along a camera path) and reused while its
 // settings (key.json) are unchanged.
-fs::path prepareReference(const BenchSpec& spec, const fs::path& dir, gpu::Context& ctx, bool quiet,
-                          json& info) {
+fs::path prepareReference(const BenchSpec& spec, const fs::path& dir, const std::string& folder,
+                          uint64_t seed, gpu::Context& ctx, bool quiet, json& info) {
     const BenchReference& ref = spec.reference;
     info = {{"source", ref.render ? "render" : "file"}};
     if (!ref.render) {
@@ -82,12 +86,13 @@ fs::path prepareReference(const BenchSpec& spec, const fs::path& dir, gpu::Conte
                       {"output", ref.output},  {"spp", ref.spp},
                       {"scene", spec.scene},   {"camera", spec.camera},
                       {"stereo", spec.stereo}, {"size", {spec.width, spec.height}},
-                      {"seed", spec.seed},     {"frames", spec.frames},
+                      {"seed", seed},          {"frames", spec.frames},
                       {"warmup", spec.warmup}};
-    const fs::path refDir = dir / "reference";
+    const fs::path refDir = dir / folder;
     const bool moving = !spec.camera.empty();
     const fs::path result = moving ? refDir : refDir / "reference.exr";
-    info.update({{"path", result.string()}, {"spp", ref.spp}, {"graph", ref.graph}});
+    info.update(
+        {{"path", result.string()}, {"spp", ref.spp}, {"graph", ref.graph}, {"seed", seed}});
     json cached = json::parse(std::ifstream(refDir / "key.json"), nullptr, false);
     if (!cached.is_discarded() && cached == key && fs::exists(result)) {
         info["cached"] = true;
@@ -100,10 +105,10 @@ fs::path prepareReference(const BenchSpec& spec, const fs::path& dir, gpu::Conte
         if (!quiet) std::cerr << "fovea: rendering the reference of frame " << f << "\n";
         RunScene scene(so, desc);
         uploadScene(ctx, scene, true);
-        image::ImageRGBA img = renderReferenceImage(
-            ctx, scene, desc, ref.graph, ref.spp,
-            {spec.width, spec.height, referenceSeed(spec.seed), true, uint64_t(f)}, ref.output,
-            spec.file + ": /reference/render/output", quiet);
+        image::ImageRGBA img =
+            renderReferenceImage(ctx, scene, desc, ref.graph, ref.spp,
+                                 {spec.width, spec.height, seed, true, uint64_t(f)}, ref.output,
+                                 spec.file + ": /reference/render/output", quiet);
         char name[32];
         std::snprintf(name, sizeof name, "frame%04u.exr", f);
         image::writeExr(moving ? refDir / name : result, img);
@@ -113,8 +118,28 @@ fs::path prepareReference(const BenchSpec& spec, const fs::path& dir, gpu::Conte
     return result;
 }
 
+// The references one output is measured against: the bench's own and BenchSpec::against, each
+// with an optional second reference of another seed (its noise floor).
+struct MeasuredReference {
+    std::string label;
+    ReferenceSource source;
+    std::optional<ReferenceSource> second;
+};
+
+// The radii of the per-layer errors: the bench's "layers", else the FoveationMask parameters
+// (after --set) of the first graph that has one; none when no graph has.
+std::optional<sampling::LayerRadii> layerRadii(const BenchSpec& spec) {
+    if (spec.layers) return spec.layers;
+    for (const auto& g : spec.graphs)
+        if (auto radii = foveationRadiiOf(loadBenchGraph(spec, g.file, g.sets, g.pointer)))
+            return radii;
+    return std::nullopt;
+}
+
 BenchResult runBenchGraph(const BenchSpec& spec, const BenchGraph& g, gpu::Context& ctx,
-                          ReferenceSource& reference, bool quiet) {
+                          std::vector<MeasuredReference>& references,
+                          const std::optional<sampling::LayerRadii>& layers,
+                          std::vector<FrameErrors>* floors, bool quiet) {
     graph::GraphDesc desc = loadBenchGraph(spec, g.file, g.sets, g.pointer);
     RunScene scene(sceneOptions(spec), desc);
     uploadScene(ctx, scene, quiet);
@@ -124,8 +149,18 @@ BenchResult runBenchGraph(const BenchSpec& spec, const BenchGraph& g, gpu::Conte
     const std::string pointer = g.output.empty() ? "/output" : g.pointer + "/output";
     result.output = selectComparedOutput(runner, g.output.empty() ? spec.output : g.output,
                                          spec.file + ": " + pointer);
-    reference.choose(result.output);
-    FrameErrors errors;
+    for (auto& m : references) {
+        m.source.choose(result.output);
+        if (m.second) m.second->choose(result.output);
+    }
+    std::vector<FrameErrors> errors(references.size());
+    for (auto& e : errors)
+        if (layers) e.setLayers(*layers);
+    if (floors) {
+        floors->assign(references.size(), FrameErrors());
+        for (auto& e : *floors)
+            if (layers) e.setLayers(*layers);
+    }
     std::vector<double> frameMs;
     std::vector<size_t> warmSamples;  // per node: gpuMs entries of the warm-up
     std::vector<uint64_t> warmExecutions;
@@ -141,15 +176,26 @@ BenchResult runBenchGraph(const BenchSpec& spec, const BenchGraph& g, gpu::Conte
         progress.update(f + 1);
         if (f < spec.warmup) continue;
         frameMs.push_back(t.gpuMs);
-        errors.add(f, runner.download(result.output),
-                   g.label + " " + result.output + " frame " + std::to_string(f),
-                   reference.forFrame(f), reference.fileFor(f).string(), &runner.graph().camera());
+        const image::ImageRGBA image = runner.download(result.output);
+        const auto* camera = &runner.graph().camera();
+        for (size_t i = 0; i < references.size(); ++i) {
+            MeasuredReference& m = references[i];
+            errors[i].add(f, image, g.label + " " + result.output + " frame " + std::to_string(f),
+                          m.source.forFrame(f), m.source.fileFor(f).string(), camera);
+            // The floor: the second reference against the first, on the same frame and camera
+            // (measured once per bench, with the first graph).
+            if (floors && m.second)
+                (*floors)[i].add(f, m.second->forFrame(f), m.second->fileFor(f).string(),
+                                 m.source.forFrame(f), m.source.fileFor(f).string(), camera);
+        }
     }
     progress.finish();
     result.frameMs = computeStats(frameMs);
-    result.meanErrors = errors.mean();
-    result.temporalError = errors.temporalError();
-    result.errors = errors.json();
+    result.meanErrors = errors[0].mean();
+    result.temporalError = errors[0].temporalError();
+    result.errors = errors[0].json();
+    for (size_t i = 1; i < references.size(); ++i)
+        result.against.push_back({references[i].label, errors[i].mean(), errors[i].json()});
     const auto& plan = runner.graph().plan();
     for (size_t n = 0; n < plan.nodes.size(); ++n) {
         const auto& rec = runner.graph().records()[n];
@@ -175,31 +221,66 @@ int benchCommand(const BenchOptions& o) {
     checkOutputDir(dir, "--out", o.overwrite);
     // Every graph file and --set is checked before the device exists (fail fast).
     for (const auto& g : spec.graphs) loadBenchGraph(spec, g.file, g.sets, g.pointer);
-    std::optional<ReferenceSource> fileReference;
-    if (!spec.reference.render) {
-        fileReference.emplace(spec.reference.file, spec.file + ": /reference", spec.width,
-                              spec.height);
-        fileReference->requireFrames(spec.warmup, spec.frames - 1);
+    const std::optional<sampling::LayerRadii> layers = layerRadii(spec);
+    // File references are read and checked before the device exists too.
+    auto source = [&](const std::string& path, const std::string& pointer) {
+        ReferenceSource r(path, spec.file + ": " + pointer, spec.width, spec.height);
+        r.requireFrames(spec.warmup, spec.frames - 1);
+        return r;
+    };
+    std::optional<ReferenceSource> fileReference, fileFloor;
+    if (!spec.reference.render) fileReference.emplace(source(spec.reference.file, "/reference"));
+    if (!spec.noiseFloor.empty()) fileFloor.emplace(source(spec.noiseFloor, "/noise_floor"));
+    std::vector<MeasuredReference> against;
+    for (const auto& a : spec.against) {
+        MeasuredReference m{a.label, source(a.file, a.pointer + "/reference"), std::nullopt};
+        if (!a.noiseFloor.empty())
+            m.second.emplace(source(a.noiseFloor, a.pointer + "/noise_floor"));
+        against.push_back(std::move(m));
     }
     std::optional<gpu::Context> device;
     gpu::Context& ctx = openDevice(device, o.device, o.validation, o.quiet);
     fs::create_directories(dir);
-    json referenceInfo;
-    const fs::path refPath = prepareReference(spec, dir, ctx, o.quiet, referenceInfo);
-    ReferenceSource reference = fileReference ? std::move(*fileReference)
-                                              : ReferenceSource(refPath, spec.file + ": /reference",
-                                                                spec.width, spec.height);
-    reference.requireFrames(spec.warmup, spec.frames - 1);
-    referenceInfo["mode"] = reference.perFrame() ? "per-frame" : "single";
+    json referenceInfo, floorInfo;
+    const fs::path refPath = prepareReference(spec, dir, "reference", referenceSeed(spec.seed), ctx,
+                                              o.quiet, referenceInfo);
+    std::vector<MeasuredReference> references;
+    references.push_back(
+        {"reference",
+         fileReference ? std::move(*fileReference) : source(refPath.string(), "/reference"),
+         std::nullopt});
+    for (auto& m : against) references.push_back(std::move(m));
+    referenceInfo["mode"] = references[0].source.perFrame() ? "per-frame" : "single";
+    if (spec.noiseFloorRender) {
+        const fs::path floorPath = prepareReference(
+            spec, dir, "reference_noise_floor", noiseFloorSeed(spec.seed), ctx, o.quiet, floorInfo);
+        references[0].second.emplace(source(floorPath.string(), "/noise_floor"));
+    } else if (fileFloor) {
+        references[0].second = std::move(fileFloor);
+        floorInfo = {{"source", "file"}, {"path", spec.noiseFloor}};
+    }
+    if (!floorInfo.is_null()) referenceInfo["noise_floor"] = floorInfo;
 
     std::vector<BenchResult> results;
-    for (const auto& g : spec.graphs)
-        results.push_back(runBenchGraph(spec, g, ctx, reference, o.quiet));
+    std::vector<FrameErrors> floors;
+    for (size_t i = 0; i < spec.graphs.size(); ++i)
+        results.push_back(runBenchGraph(spec, spec.graphs[i], ctx, references, layers,
+                                        i == 0 ? &floors : nullptr, o.quiet));
     checkValidation(ctx);
     const double baseline = results.front().frameMs.median;
     for (auto& r : results) r.speedup = r.frameMs.median > 0 ? baseline / r.frameMs.median : 0.0;
+    std::vector<double> ms, rmse;
+    for (const auto& r : results) {
+        ms.push_back(r.frameMs.median);
+        rmse.push_back(r.meanErrors.rmsePercent);
+    }
+    const std::vector<bool> pareto = image::paretoOptimal(ms, rmse);
+    for (size_t i = 0; i < results.size(); ++i) results[i].pareto = pareto[i];
+    json noiseFloor = json::object();
+    for (size_t i = 0; i < references.size() && i < floors.size(); ++i)
+        if (references[i].second) noiseFloor[references[i].label] = floors[i].json();
 
-    const json header = {
+    json header = {
         {"bench_version", 1},
         {"fovea_version", FOVEA_VERSION},
         {"bench", spec.file},
@@ -214,6 +295,17 @@ int benchCommand(const BenchOptions& o) {
         {"warmup", spec.warmup},
         {"seed", spec.seed},
         {"reference", referenceInfo}};
+    if (!noiseFloor.empty()) header["noise_floor"] = noiseFloor;
+    if (layers)
+        header["layers"] = {{"r0", layers->r0},
+                            {"r1", layers->r1},
+                            {"unit", layers->degrees ? "degrees" : "pixels"}};
+    if (!spec.against.empty()) {
+        header["also_against"] = json::array();
+        for (const auto& a : spec.against)
+            header["also_against"].push_back(
+                {{"label", a.label}, {"path", a.file}, {"noise_floor", a.noiseFloor}});
+    }
     writeBenchTables(dir, header, results);
     std::ofstream(dir / "bench.svg") << benchPlotSvg(results, spec.name + " — " + ctx.deviceName());
     std::string why;

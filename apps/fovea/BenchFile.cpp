@@ -1,5 +1,6 @@
 // Parsing of `fovea bench` files (docs/bench.md). Every error names the file and the JSON
 // pointer of the offending value; paths are relative to the bench file's folder.
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -102,9 +103,10 @@ BenchSpec parseBenchFile(const fs::path& file) {
     json j = json::parse(stream, nullptr, false);
     if (j.is_discarded()) throw InputError(name, "", "not valid JSON");
     Reader r(name);
-    r.keys(j, "",
-           {"version", "name", "description", "scene", "camera", "size", "stereo", "frames",
-            "warmup", "seed", "output", "reference", "graphs"});
+    r.keys(
+        j, "",
+        {"version", "name", "description", "scene", "camera", "size", "stereo", "frames", "warmup",
+         "seed", "output", "reference", "noise_floor", "also_against", "layers", "graphs"});
     BenchSpec spec;
     spec.file = name;
     if (r.count(r.need(j, "", "version"), "/version", 1, 1) != 1) r.fail("/version", "expected 1");
@@ -128,6 +130,68 @@ BenchSpec parseBenchFile(const fs::path& file) {
     if (j.contains("seed")) spec.seed = r.count(j["seed"], "/seed", 0, 0xffffffffu);
     if (j.contains("output")) spec.output = r.string(j["output"], "/output");
     spec.reference = parseReference(r, r.need(j, "", "reference"));
+    if (j.contains("noise_floor")) {
+        const json& n = j["noise_floor"];
+        if (n.is_string() && n.get<std::string>() == "render") {
+            if (!spec.reference.render)
+                r.fail("/noise_floor",
+                       "\"render\" needs a rendered /reference; name a second reference file "
+                       "(another seed) instead");
+            spec.noiseFloorRender = true;
+        } else if (n.is_string()) {
+            spec.noiseFloor = r.resolve(n, "/noise_floor").lexically_normal().string();
+        } else {
+            r.fail("/noise_floor",
+                   "expected \"render\" or the path of a second reference with another seed");
+        }
+    }
+    if (j.contains("also_against")) {
+        const json& a = j["also_against"];
+        if (!a.is_array())
+            r.fail("/also_against", "expected an array of {\"label\", \"reference\"}");
+        for (size_t i = 0; i < a.size(); ++i) {
+            BenchAgainst g;
+            g.pointer = "/also_against/" + std::to_string(i);
+            r.keys(a[i], g.pointer, {"label", "reference", "noise_floor"});
+            g.label = r.string(r.need(a[i], g.pointer, "label"), g.pointer + "/label");
+            if (g.label == "reference")
+                r.fail(g.pointer + "/label", "'reference' names the bench's own reference");
+            for (const auto& other : spec.against)
+                if (other.label == g.label)
+                    r.fail(g.pointer + "/label", "label '" + g.label + "' is used twice");
+            // Checked when the run starts, like /reference (it may be rendered first).
+            g.file = r.resolve(r.need(a[i], g.pointer, "reference"), g.pointer + "/reference")
+                         .lexically_normal()
+                         .string();
+            if (a[i].contains("noise_floor"))
+                g.noiseFloor = r.resolve(a[i]["noise_floor"], g.pointer + "/noise_floor")
+                                   .lexically_normal()
+                                   .string();
+            spec.against.push_back(std::move(g));
+        }
+    }
+    if (j.contains("layers")) {
+        const json& l = j["layers"];
+        r.keys(l, "/layers", {"r0", "r1", "unit"});
+        auto radius = [&](const char* key) {
+            const json& v = r.need(l, "/layers", key);
+            const std::string pointer = std::string("/layers/") + key;
+            if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0)
+                r.fail(pointer, "expected a finite number >= 0");
+            return v.get<double>();
+        };
+        sampling::LayerRadii radii;
+        radii.r0 = radius("r0");
+        radii.r1 = radius("r1");
+        if (radii.r1 < radii.r0) r.fail("/layers/r1", "r1 is smaller than r0");
+        if (l.contains("unit")) {
+            const std::string unit = r.string(l["unit"], "/layers/unit");
+            if (unit != "pixels" && unit != "degrees")
+                r.fail("/layers/unit", "expected \"pixels\" or \"degrees\"");
+            radii.degrees = unit == "degrees";
+        }
+        spec.layers = radii;
+    }
     const json& graphs = r.need(j, "", "graphs");
     if (!graphs.is_array() || graphs.empty()) r.fail("/graphs", "expected a non-empty array");
     for (size_t i = 0; i < graphs.size(); ++i) {

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "apps/fovea/Bench.h"
+#include "core/image/ImageMetrics.h"
 
 namespace fovea::app {
 
@@ -36,6 +37,8 @@ std::string md(const std::string& s) {
 }
 
 json resultJson(const BenchResult& r) {
+    json against = json::object();
+    for (const auto& a : r.against) against[a.label] = a.errors;
     json passes = json::array();
     for (const auto& p : r.passes)
         passes.push_back({{"name", p.name},
@@ -49,7 +52,9 @@ json resultJson(const BenchResult& r) {
             {"output", r.output},
             {"frame_ms", statsJson(r.frameMs)},
             {"speedup", r.speedup},
+            {"pareto", r.pareto},
             {"errors", r.errors},
+            {"also_against", against},
             {"passes", passes}};
 }
 
@@ -58,14 +63,102 @@ json resultJson(const BenchResult& r) {
 namespace {
 
 // The mean RMSE of the three eccentricity bands (FrameErrors' "bands"; NaN when absent).
-std::vector<double> bandRmse(const BenchResult& r) {
+std::vector<double> bandRmse(const json& errors) {
     std::vector<double> out(3, std::nan(""));
     const json* bands = nullptr;
-    if (r.errors.contains("mean") && r.errors["mean"].contains("bands"))
-        bands = &r.errors["mean"]["bands"];
+    if (errors.contains("mean") && errors["mean"].contains("bands"))
+        bands = &errors["mean"]["bands"];
     for (size_t b = 0; bands && b < out.size() && b < bands->size(); ++b)
         out[b] = (*bands)[b].at("rmse").get<double>();
     return out;
+}
+
+// The mean RMSE % of the three foveation layers (FrameErrors' "layers"; NaN when absent). The
+// bench's images are compared with peak 1, so RMSE % = 100 RMSE (ImageMetrics.h).
+std::vector<double> layerRmsePercent(const json& errors) {
+    std::vector<double> out(3, std::nan(""));
+    const json* layers = nullptr;
+    if (errors.contains("mean") && errors["mean"].contains("layers"))
+        layers = &errors["mean"]["layers"];
+    for (size_t l = 0; layers && l < out.size() && l < layers->size(); ++l)
+        out[l] = 100.0 * (*layers)[l].at("rmse").get<double>();
+    return out;
+}
+
+double meanOf(const json& errors, const char* key) {
+    if (!errors.contains("mean") || !errors["mean"].contains(key) ||
+        !errors["mean"][key].is_number())
+        return std::nan("");
+    return errors["mean"][key].get<double>();
+}
+
+// The worst frame's number and RMSE % (NaN/none when absent).
+std::pair<std::string, double> worstOf(const json& errors) {
+    if (!errors.contains("worst")) return {"", std::nan("")};
+    return {std::to_string(errors["worst"].at("frame").get<uint32_t>()),
+            errors["worst"].at("rmse_percent").get<double>()};
+}
+
+// The noise floor (the second reference against the first) of reference `label`; null when none.
+const json* floorOf(const json& header, const std::string& label) {
+    if (!header.contains("noise_floor") || !header["noise_floor"].contains(label)) return nullptr;
+    return &header["noise_floor"][label];
+}
+
+// RMSE % with the reference's own noise (half the floor's MSE) taken out (ImageMetrics.h
+// noiseCorrectedRmse); NaN without a floor.
+double correctedPercent(const json& errors, const json* floor) {
+    if (!floor) return std::nan("");
+    return 100.0 * image::noiseCorrectedRmse(meanOf(errors, "mse"), meanOf(*floor, "mse"));
+}
+
+std::string layerHeading(const json& header) {
+    if (!header.contains("layers")) return "";
+    const json& l = header["layers"];
+    const std::string unit = l.at("unit").get<std::string>() == "degrees" ? " deg" : " px";
+    return "fovea (d <= " + number(l.at("r0").get<double>(), "%g") + unit +
+           ") | middle (<= " + number(l.at("r1").get<double>(), "%g") + unit + ") | outer";
+}
+
+// The error table of one reference: per graph the mean RMSE %, the RMSE % corrected for the
+// reference's noise, the worst frame, and the RMSE % per foveation layer; a first row holds the
+// noise floor itself.
+void errorTable(std::ostream& t, const json& header, const std::vector<BenchResult>& results,
+                const std::string& label, const std::vector<const json*>& errors) {
+    const json* floor = floorOf(header, label);
+    const std::string layers = layerHeading(header);
+    t << "| Graph | RMSE % | RMSE % above the reference noise | Worst frame | Worst RMSE %"
+      << (layers.empty() ? "" : " | " + layers) << " |\n|---|---:|---:|---:|---:|"
+      << (layers.empty() ? "" : "---:|---:|---:|") << "\n";
+    auto row = [&](const std::string& name, const json& e, const json* fl) {
+        const auto [worstFrame, worstPercent] = worstOf(e);
+        t << "| " << md(name) << " | " << number(meanOf(e, "rmse_percent"), "%.4f") << " | "
+          << number(correctedPercent(e, fl), "%.4f") << " | " << worstFrame << " | "
+          << number(worstPercent, "%.4f");
+        if (!layers.empty())
+            for (double v : layerRmsePercent(e)) t << " | " << number(v, "%.4f");
+        t << " |\n";
+    };
+    if (floor) row("*noise floor: 2nd reference*", *floor, nullptr);
+    for (size_t i = 0; i < results.size(); ++i) row(results[i].graph.label, *errors[i], floor);
+}
+
+// How to read the floor (docs/benchmarks.md, "the paper's protocol").
+void floorNote(std::ostream& t, const json& header, const std::string& label) {
+    const json* floor = floorOf(header, label);
+    if (!floor) {
+        t << "No noise floor for this reference (bench key `noise_floor`): errors close to the "
+             "reference's own noise cannot be told from it.\n\n";
+        return;
+    }
+    const double f = meanOf(*floor, "rmse_percent");
+    t << "Noise floor: a second reference with another seed differs from this one by RMSE "
+      << number(f, "%.4f") << " %, so the reference itself is about "
+      << number(f / std::sqrt(2.0), "%.4f")
+      << " % (floor / sqrt 2) from the truth. A graph's error against it is at least that; "
+         "\"above the reference noise\" takes half the floor's MSE out (sqrt(MSE - floor MSE / "
+         "2)), 0 = within the reference's noise. Differences between graphs smaller than the "
+         "floor are not resolved.\n\n";
 }
 
 }  // namespace
@@ -78,8 +171,14 @@ void writeBenchTables(const fs::path& dir, const json& header,
     std::ofstream(dir / "bench.json") << all.dump(2) << "\n";
 
     std::ofstream c(dir / "bench.csv");
+    const json* floor = floorOf(header, "reference");
     c << "label,file,output,frame_ms_median,frame_ms_mean,speedup,rmse_percent,rmse,rel_mse,"
-         "psnr_db,ssim,temporal_error,rmse_0_5deg,rmse_5_20deg,rmse_20deg_plus\n";
+         "psnr_db,ssim,temporal_error,rmse_0_5deg,rmse_5_20deg,rmse_20deg_plus,"
+         "rmse_percent_noise_floor,rmse_percent_above_noise,worst_frame,worst_rmse_percent,"
+         "rmse_percent_fovea,rmse_percent_middle,rmse_percent_outer,pareto";
+    for (const auto& a : results.front().against)
+        c << "," << csv("rmse_percent_" + a.label) << "," << csv("worst_rmse_percent_" + a.label);
+    c << "\n";
     for (const auto& r : results) {
         const auto& m = r.meanErrors;
         c << csv(r.graph.label) << "," << csv(r.graph.file) << "," << csv(r.output) << ","
@@ -88,7 +187,16 @@ void writeBenchTables(const fs::path& dir, const json& header,
           << number(m.rmse, "%.6g") << "," << number(m.relMse, "%.6g") << ","
           << number(m.psnr, "%.6g") << "," << number(m.ssim, "%.6g") << ","
           << number(r.temporalError, "%.6g");
-        for (double v : bandRmse(r)) c << "," << number(v, "%.6g");
+        for (double v : bandRmse(r.errors)) c << "," << number(v, "%.6g");
+        const auto [worstFrame, worstPercent] = worstOf(r.errors);
+        c << "," << number(floor ? meanOf(*floor, "rmse_percent") : std::nan(""), "%.6g") << ","
+          << number(correctedPercent(r.errors, floor), "%.6g") << "," << worstFrame << ","
+          << number(worstPercent, "%.6g");
+        for (double v : layerRmsePercent(r.errors)) c << "," << number(v, "%.6g");
+        c << "," << (r.pareto ? "true" : "false");
+        for (const auto& a : r.against)
+            c << "," << number(a.meanErrors.rmsePercent, "%.6g") << ","
+              << number(worstOf(a.errors).second, "%.6g");
         c << "\n";
     }
 
@@ -106,20 +214,39 @@ void writeBenchTables(const fs::path& dir, const json& header,
       << "measured frames; errors are means over them; speedup is against the first graph ("
       << md(results.front().graph.label) << ") of the same run.\n\n"
       << "| Graph | Output | Frame ms (median) | Speedup | RMSE % | PSNR dB | SSIM | Temporal "
-         "error "
-         "|\n|---|---|---:|---:|---:|---:|---:|---:|\n";
+         "error | Pareto "
+         "|\n|---|---|---:|---:|---:|---:|---:|---:|---|\n";
     for (const auto& r : results) {
         const auto& m = r.meanErrors;
         t << "| " << md(r.graph.label) << " | " << md(r.output) << " | "
           << number(r.frameMs.median, "%.3f") << " | " << number(r.speedup, "%.2fx") << " | "
           << number(m.rmsePercent, "%.4f") << " | " << number(m.psnr, "%.2f") << " | "
-          << number(m.ssim, "%.4f") << " | " << number(r.temporalError, "%.5f") << " |\n";
+          << number(m.ssim, "%.4f") << " | " << number(r.temporalError, "%.5f") << " | "
+          << (r.pareto ? "**yes**" : "") << " |\n";
+    }
+    t << "\nPareto: no other graph of this run is both faster (median frame ms) and closer to the "
+         "reference (RMSE %); the front is marked in the plot.\n";
+    t << "\n## Error against the reference: noise floor, worst frame, layers\n\n";
+    floorNote(t, header, "reference");
+    std::vector<const json*> primary;
+    for (const auto& r : results) primary.push_back(&r.errors);
+    errorTable(t, header, results, "reference", primary);
+    for (size_t a = 0; a < results.front().against.size(); ++a) {
+        const std::string label = results.front().against[a].label;
+        t << "\n## Error against the reference '" << md(label) << "'";
+        if (header.contains("also_against") && a < header["also_against"].size())
+            t << " (" << header["also_against"][a].at("path").get<std::string>() << ")";
+        t << "\n\n";
+        floorNote(t, header, label);
+        std::vector<const json*> errors;
+        for (const auto& r : results) errors.push_back(&r.against[a].errors);
+        errorTable(t, header, results, label, errors);
     }
     t << "\n## RMSE per eccentricity band (degrees from the gaze; mean over measured frames)\n\n"
       << "| Graph | 0-5 deg | 5-20 deg | 20+ deg |\n|---|---:|---:|---:|\n";
     for (const auto& r : results) {
         t << "| " << md(r.graph.label);
-        for (double v : bandRmse(r)) t << " | " << number(v, "%.5f");
+        for (double v : bandRmse(r.errors)) t << " | " << number(v, "%.5f");
         t << " |\n";
     }
     t << "\n## GPU ms per pass (median over measured frames)\n\n"

@@ -146,6 +146,31 @@ std::string benchPlotSvg(const std::vector<BenchResult>& results, const std::str
       << "<text x=\"22\" y=\"" << kTop + plotH / 2
       << "\" text-anchor=\"middle\" transform=\"rotate(-90 22 " << kTop + plotH / 2
       << ")\">error against the reference, RMSE (%)</text>\n";
+    // The Pareto front (BenchResult::pareto): a staircase through the optimal points in order of
+    // time - everything above and right of it is beaten by a point on it - and a ring on each.
+    std::vector<const BenchResult*> front;
+    for (const auto& r : results)
+        if (r.pareto) front.push_back(&r);
+    std::sort(front.begin(), front.end(), [](const BenchResult* a, const BenchResult* b) {
+        return a->frameMs.median < b->frameMs.median;
+    });
+    if (!front.empty()) {
+        s << "<polyline class=\"pareto-front\" fill=\"none\" stroke=\"#555555\" "
+             "stroke-dasharray=\"5 4\" points=\"";
+        for (size_t i = 0; i < front.size(); ++i) {
+            const double x = px(front[i]->frameMs.median), y = py(front[i]->meanErrors.rmsePercent);
+            if (i > 0) s << num(x) << "," << num(py(front[i - 1]->meanErrors.rmsePercent)) << " ";
+            s << num(x) << "," << num(y) << " ";
+        }
+        s << "\"/>\n";
+        for (const BenchResult* r : front)
+            s << "<circle class=\"pareto\" cx=\"" << num(px(r->frameMs.median)) << "\" cy=\""
+              << num(py(r->meanErrors.rmsePercent))
+              << "\" r=\"10\" fill=\"none\" stroke=\"#555555\" stroke-width=\"1.5\"></circle>\n";
+        s << "<text x=\"" << kWidth - kRight << "\" y=\"" << kTop - 6
+          << "\" text-anchor=\"end\" font-size=\"12\" fill=\"#555555\">ringed, dashed: Pareto "
+             "front (faster or more accurate than every other point)</text>\n";
+    }
     // One point per graph; labels alternate above and below to keep close points readable.
     for (size_t i = 0; i < results.size(); ++i) {
         const auto& r = results[i];

@@ -3,6 +3,7 @@
 #pragma once
 #include <CLI/CLI.hpp>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,12 @@ struct RunOptions {
     // --reference: an EXR (every frame) or a directory of per-frame EXRs (ReferenceErrors.h);
     // errors of `referenceOutput` (default: the first float output) go into report.json.
     std::string reference, referenceOutput;
+    // --reference-noise: a second reference with another seed; report.json gets the noise floor
+    // (its errors against --reference) next to the errors.
+    std::string referenceNoise;
+    // `fovea reference --path-frame F`: every frame uses camera-path frame F (a converged
+    // reference of one frame of a moving camera path).
+    std::optional<uint64_t> fixedCameraFrame;
 };
 
 void addRunCommand(CLI::App& app, RunOptions& options);
@@ -47,6 +54,8 @@ int runCommand(const RunOptions& options);
 struct ReferenceOptions {
     RunOptions run;
     int spp = 1024;
+    int64_t pathFrame = -1;     // --path-frame; -1 = none
+    bool pixelCentres = false;  // --pixel-centres: graphs/reference_pixel_centres.json
 };
 void addReferenceCommand(CLI::App& app, ReferenceOptions& options);
 int referenceCommand(ReferenceOptions options);

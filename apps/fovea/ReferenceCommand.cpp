@@ -21,6 +21,14 @@ void addReferenceCommand(CLI::App& app, ReferenceOptions& o) {
     o.run.graph.graph = (fs::path(FOVEA_SOURCE_DIR) / "graphs" / "reference.json").string();
     cmd->add_option("--graph", o.run.graph.graph,
                     "reference graph (default: graphs/reference.json of this source tree)");
+    cmd->add_flag("--pixel-centres", o.pixelCentres,
+                  "primary rays through pixel centres, no jitter (graphs/"
+                  "reference_pixel_centres.json): the reference of a denoiser's own error when its "
+                  "input path tracer starts at the GBuffer's pixel-centre hits");
+    cmd->add_option("--path-frame", o.pathFrame,
+                    "hold the camera at this frame of the --camera path (per-frame references "
+                    "of a moving camera, one run each)")
+        ->check(CLI::Range(int64_t(0), int64_t(1) << 40));
     cmd->add_option("--spp", o.spp, "samples per pixel in total (default 1024)")
         ->check(CLI::Range(1, 1 << 24));
     cmd->add_option("--size", o.run.graph.size, "render size WIDTHxHEIGHT (default: the graph's)")
@@ -78,6 +86,18 @@ image::ImageRGBA renderReferenceImage(gpu::Context& ctx, RunScene& scene,
 }
 
 int referenceCommand(ReferenceOptions o) {
+    const fs::path defaultGraph = fs::path(FOVEA_SOURCE_DIR) / "graphs" / "reference.json";
+    if (o.pixelCentres) {
+        if (o.run.graph.graph != defaultGraph.string())
+            throw InputError("--pixel-centres", "", "chooses the graph itself; drop --graph");
+        o.run.graph.graph =
+            (fs::path(FOVEA_SOURCE_DIR) / "graphs" / "reference_pixel_centres.json").string();
+    }
+    if (o.pathFrame >= 0) {
+        if (o.run.scene.camera.empty())
+            throw InputError("--path-frame", "", "needs --camera (a camera path)");
+        o.run.fixedCameraFrame = uint64_t(o.pathFrame);
+    }
     // Samples per frame = the `spp` of the graph's PathTrace pass(es) after --set overrides.
     const uint32_t perFrame = referenceSamplesPerFrame(loadGraph(o.run.graph), o.run.graph.graph);
     const uint32_t frames = referenceFrames(uint32_t(o.spp), perFrame);

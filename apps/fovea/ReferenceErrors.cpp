@@ -5,6 +5,8 @@
 #include <regex>
 
 #include "apps/fovea/GraphRunner.h"
+#include "core/graph/Param.h"
+#include "core/graph/PassRegistry.h"
 #include "core/util/DidYouMean.h"
 #include "core/util/Error.h"
 
@@ -16,6 +18,19 @@ ReferenceSource::ReferenceSource(const fs::path& path, const std::string& option
                                  uint32_t height)
     : mPath(path), mOption(option), mWidth(width), mHeight(height) {
     if (path.empty()) throw InputError(option, "", "no reference given");
+    if (path.string().find('%') != std::string::npos) {
+        // One integer conversion (flags and width allowed), "%%" escapes: checked before any
+        // frame so that snprintf below never meets another conversion.
+        static const std::regex kPattern(R"(^([^%]|%%)*%0?[0-9]*[du]([^%]|%%)*$)");
+        if (!std::regex_match(path.string(), kPattern))
+            throw InputError(option, "",
+                             "reference pattern '" + path.string() +
+                                 "' needs exactly one integer conversion such as %04d (the frame "
+                                 "number)");
+        mPattern = path.string();
+        mPerFrame = true;
+        return;
+    }
     if (!fs::exists(path))
         throw InputError(option, "", "reference '" + path.string() + "' does not exist");
     if (!fs::is_directory(path)) {
@@ -41,6 +56,15 @@ ReferenceSource::ReferenceSource(const fs::path& path, const std::string& option
 
 void ReferenceSource::requireFrames(uint32_t first, uint32_t last) const {
     if (!mPerFrame) return;
+    if (!mPattern.empty()) {
+        for (uint32_t f = first; f <= last; ++f)
+            if (!fs::is_regular_file(fileFor(f)))
+                throw InputError(mOption, "",
+                                 "reference pattern '" + mPattern + "' gives no file for frame " +
+                                     std::to_string(f) + " ('" + fileFor(f).string() +
+                                     "' not found)");
+        return;
+    }
     for (uint32_t f = first; f <= last; ++f)
         if (!mCandidates.count(f)) {
             char name[32];
@@ -54,6 +78,7 @@ void ReferenceSource::requireFrames(uint32_t first, uint32_t last) const {
 void ReferenceSource::choose(const std::string& output) {
     mFiles.clear();
     mLoadedFrame.reset();
+    if (!mPattern.empty()) return;  // one file per frame by construction
     for (auto& [frame, files] : mCandidates) {
         std::sort(files.begin(), files.end());
         std::vector<fs::path> named;
@@ -78,6 +103,12 @@ void ReferenceSource::choose(const std::string& output) {
 
 fs::path ReferenceSource::fileFor(uint32_t frame) const {
     if (!mPerFrame) return mPath;
+    if (!mPattern.empty()) {
+        // The constructor checked: one %d/%u conversion, so one unsigned argument is right.
+        std::vector<char> text(mPattern.size() + 32);
+        std::snprintf(text.data(), text.size(), mPattern.c_str(), frame);
+        return fs::path(text.data());
+    }
     auto it = mFiles.find(frame);
     return it == mFiles.end() ? fs::path() : it->second;
 }
@@ -97,12 +128,27 @@ const image::ImageRGBA& ReferenceSource::forFrame(uint32_t frame) {
     if (!mPerFrame) return mImage;
     if (mLoadedFrame != frame) {
         requireFrames(frame, frame);
-        auto it = mFiles.find(frame);
-        if (it == mFiles.end()) throw RuntimeError("ReferenceSource::choose was not called");
-        load(it->second);
+        const fs::path file = fileFor(frame);
+        if (file.empty()) throw RuntimeError("ReferenceSource::choose was not called");
+        load(file);
         mLoadedFrame = frame;
     }
     return mImage;
+}
+
+std::optional<sampling::LayerRadii> foveationRadiiOf(const graph::GraphDesc& desc) {
+    for (const auto& p : desc.passes) {
+        if (p.type != "FoveationMask" || !p.enabled) continue;
+        auto pass = graph::passRegistry().create(p.type, p.name);
+        graph::loadParams(*pass, p.params, desc.file, p.pointer + "/params");
+        const nlohmann::json values = graph::saveParams(*pass, false);
+        sampling::LayerRadii radii;
+        radii.r0 = values.at("r0").get<double>();
+        radii.r1 = values.at("r1").get<double>();
+        radii.degrees = values.at("radiusUnit").get<std::string>() == "degrees";
+        return radii;
+    }
+    return std::nullopt;
 }
 
 std::string selectComparedOutput(const GraphRunner& runner, const std::string& requested,
@@ -139,9 +185,12 @@ void FrameErrors::add(uint32_t frame, const image::ImageRGBA& test, const std::s
             referenceName,
             image::computeMetrics(test, reference, mOptions, testName, referenceName),
             std::nullopt,
+            {},
             {}};
     // computeMetrics has checked the sizes (InputError otherwise).
     if (camera) f.bands = sampling::eccentricityBandErrors(test, reference, *camera);
+    if (camera && mLayers)
+        f.layers = sampling::foveationLayerErrors(test, reference, *camera, *mLayers);
     if (mPrevious) f.temporal = image::temporalError(*mPrevious, test, "previous frame", testName);
     mFrames.push_back(std::move(f));
     mPrevious = test;
@@ -185,6 +234,36 @@ std::vector<sampling::BandError> FrameErrors::meanBands() const {
     return mean;
 }
 
+std::vector<sampling::BandError> FrameErrors::meanLayers() const {
+    std::vector<sampling::BandError> mean;
+    size_t n = 0;
+    for (const auto& f : mFrames) {
+        if (f.layers.empty()) continue;
+        if (mean.empty()) {
+            mean = f.layers;
+            for (auto& l : mean) l.rmse = 0;
+        }
+        for (size_t l = 0; l < mean.size() && l < f.layers.size(); ++l)
+            mean[l].rmse += f.layers[l].rmse * f.layers[l].rmse;
+        ++n;
+    }
+    for (auto& l : mean) l.rmse = std::sqrt(l.rmse / double(std::max<size_t>(n, 1)));
+    return mean;
+}
+
+std::optional<uint32_t> FrameErrors::worstFrame() const {
+    const Frame* worst = nullptr;
+    for (const auto& f : mFrames)
+        if (!worst || f.metrics.rmse > worst->metrics.rmse) worst = &f;
+    return worst ? std::optional<uint32_t>(worst->frame) : std::nullopt;
+}
+
+const image::ImageMetrics& FrameErrors::metricsOf(uint32_t frame) const {
+    for (const auto& f : mFrames)
+        if (f.frame == frame) return f.metrics;
+    throw RuntimeError("FrameErrors: no frame " + std::to_string(frame));
+}
+
 double FrameErrors::temporalError() const {
     double sum = 0;
     size_t pairs = 0;
@@ -205,12 +284,23 @@ nlohmann::json FrameErrors::json() const {
         j["reference"] = f.reference;
         j["temporal_error"] = f.temporal ? json(*f.temporal) : json(nullptr);
         if (!f.bands.empty()) j["bands"] = sampling::bandErrorsToJson(f.bands);
+        if (!f.layers.empty() && mLayers)
+            j["layers"] = sampling::layerErrorsToJson(f.layers, *mLayers);
         frames.push_back(j);
     }
     json mean = image::metricsToJson(this->mean(), mOptions);
     mean.erase("temporal_error");  // per frame it is against the previous frame, see below
     if (auto bands = meanBands(); !bands.empty()) mean["bands"] = sampling::bandErrorsToJson(bands);
-    return {{"frames", frames}, {"mean", mean}, {"temporal_error", temporalError()}};
+    if (auto layers = meanLayers(); !layers.empty() && mLayers)
+        mean["layers"] = sampling::layerErrorsToJson(layers, *mLayers);
+    json out = {{"frames", frames}, {"mean", mean}, {"temporal_error", temporalError()}};
+    if (auto worst = worstFrame()) {
+        json w = image::metricsToJson(metricsOf(*worst), mOptions);
+        w.erase("temporal_error");
+        w["frame"] = *worst;
+        out["worst"] = w;
+    }
+    return out;
 }
 
 }  // namespace fovea::app

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/graph/GraphDesc.h"
 #include "core/image/ImageMetrics.h"
 #include "core/sampling/EccentricityBands.h"
 
@@ -17,13 +18,20 @@ namespace fovea::app {
 
 class GraphRunner;
 
+// The foveation layer radii of a graph: the parameters (defaults filled in) of its first enabled
+// FoveationMask pass; none when it has none.
+std::optional<sampling::LayerRadii> foveationRadiiOf(const graph::GraphDesc& desc);
+
 // The reference of every frame. `path` is either
 //  - an image file (EXR): one converged reference for all frames (a still camera), or
 //  - a directory: one file per frame whose name contains `frameNNNN` (4+ digits, the frame
 //    number of the run, as `run --save-frames all` names them) and ends in `.exr`: a moving
 //    camera path needs a reference per frame. A directory holding several files for one frame (a
 //    `run --save-frames all` folder with several outputs) is resolved by choose(): the file
-//    named `<compared output>.frameNNNN...` wins.
+//    named `<compared output>.frameNNNN...` wins, or
+//  - a printf pattern with one integer conversion (`ref/tm.ldr.frame%04d.exr`, `%d`, `%05u`):
+//    frame f's reference is the pattern printed with f (per-frame references rendered one by
+//    one, e.g. by `fovea reference --camera PATH --path-frame F`, docs/benchmarks.md).
 // `option` names the source in errors (e.g. "--reference" or the bench file's pointer).
 class ReferenceSource {
 public:
@@ -47,6 +55,7 @@ private:
     bool mPerFrame = false;
     std::map<uint32_t, std::vector<std::filesystem::path>> mCandidates;  // per-frame mode
     std::map<uint32_t, std::filesystem::path> mFiles;                    // after choose()
+    std::string mPattern;  // printf pattern mode: non-empty
     std::optional<uint32_t> mLoadedFrame;
     image::ImageRGBA mImage;
     void load(const std::filesystem::path& file);
@@ -62,6 +71,10 @@ std::string selectComparedOutput(const GraphRunner& runner, const std::string& r
 class FrameErrors {
 public:
     explicit FrameErrors(image::MetricOptions options = {}) : mOptions(options) {}
+    // With radii (and a camera in add): also the RMSE per foveation layer (fovea / middle /
+    // outer, seed 000 §3.2), core/sampling/EccentricityBands.h.
+    void setLayers(const sampling::LayerRadii& radii) { mLayers = radii; }
+    const std::optional<sampling::LayerRadii>& layers() const { return mLayers; }
     // `camera` (the frame's): also the RMSE per eccentricity band (0-5, 5-20, 20+ degrees,
     // core/sampling/EccentricityBands.h); null = no bands.
     void add(uint32_t frame, const image::ImageRGBA& test, const std::string& testName,
@@ -69,6 +82,12 @@ public:
              const scene::FrameCamera* camera = nullptr);
     // Mean per-band RMSE over the frames that have bands (empty when none has).
     std::vector<sampling::BandError> meanBands() const;
+    // Mean per-layer RMSE (RMS over the frames, so that it squares to the mean MSE) over the
+    // frames that have layers (empty when none has).
+    std::vector<sampling::BandError> meanLayers() const;
+    // The frame with the largest RMSE (the first of equal ones); 0 frames: none.
+    std::optional<uint32_t> worstFrame() const;
+    const image::ImageMetrics& metricsOf(uint32_t frame) const;
     size_t count() const { return mFrames.size(); }
     // Mean of each per-frame figure; PSNR is +inf when any frame's is (identical images).
     image::ImageMetrics mean() const;
@@ -77,7 +96,8 @@ public:
     // {"frames": [{"frame", "reference", metrics..., "temporal_error"}], "mean": {...},
     //  "temporal_error"}: the metric keys of metricsToJson; "temporal_error" of a frame is
     // against the previous compared frame (null for the first). With a camera: "bands" per frame
-    // and in "mean" ([{"from", "to", "pixels", "rmse"}]).
+    // and in "mean" ([{"from", "to", "pixels", "rmse"}]); with layers also "layers" (see
+    // layerErrorsToJson). "worst": {"frame", metrics...} of worstFrame().
     nlohmann::json json() const;
 
 private:
@@ -87,8 +107,10 @@ private:
         image::ImageMetrics metrics;
         std::optional<double> temporal;
         std::vector<sampling::BandError> bands;
+        std::vector<sampling::BandError> layers;
     };
     image::MetricOptions mOptions;
+    std::optional<sampling::LayerRadii> mLayers;
     std::vector<Frame> mFrames;
     std::optional<image::ImageRGBA> mPrevious;
 };

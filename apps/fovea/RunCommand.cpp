@@ -51,6 +51,10 @@ void addRunCommand(CLI::App& app, RunOptions& o) {
                     "reference EXR (all frames) or directory of per-frame EXRs (*frameNNNN*.exr): "
                     "per-frame errors go into report.json")
         ->check(nonEmptyValue());
+    cmd->add_option("--reference-noise", o.referenceNoise,
+                    "second reference with another seed (file, directory or %04d pattern, as "
+                    "--reference): report.json gets the reference's noise floor next to the errors")
+        ->check(nonEmptyValue());
     cmd->add_option("--reference-output", o.referenceOutput,
                     "graph output compared with --reference (default: the first float output)")
         ->check(nonEmptyValue());
@@ -155,20 +159,33 @@ int runCommand(const RunOptions& o) {
     checkOutputDir(outDir, "--out", o.overwrite);
     if (!o.referenceOutput.empty() && o.reference.empty())
         throw InputError("--reference-output", "", "needs --reference");
-    std::optional<ReferenceSource> reference;
+    if (!o.referenceNoise.empty() && o.reference.empty())
+        throw InputError("--reference-noise", "", "needs --reference");
+    std::optional<ReferenceSource> reference, referenceNoise;
     if (!o.reference.empty()) {
         reference.emplace(o.reference, "--reference", width, height);
         reference->requireFrames(0, frames - 1);
     }
+    if (!o.referenceNoise.empty()) {
+        referenceNoise.emplace(o.referenceNoise, "--reference-noise", width, height);
+        referenceNoise->requireFrames(0, frames - 1);
+    }
+    const std::optional<sampling::LayerRadii> layers = foveationRadiiOf(desc);
 
     gpu::Context& ctx = openDevice(device, o.device, o.validation, o.quiet);
     uploadScene(ctx, scene, o.quiet);
-    GraphRunner runner(ctx, scene, desc, {width, height, seed, !o.graph.noAliasing, {}});
+    GraphRunner runner(ctx, scene, desc,
+                       {width, height, seed, !o.graph.noAliasing, o.fixedCameraFrame});
     // Reading the compared output back costs a transfer per frame: only with --reference.
     const std::string compared =
         reference ? selectComparedOutput(runner, o.referenceOutput, "--reference-output") : "";
     if (reference) reference->choose(compared);
-    FrameErrors errors;
+    if (referenceNoise) referenceNoise->choose(compared);
+    FrameErrors errors, floor;
+    if (layers) {
+        errors.setLayers(*layers);
+        floor.setLayers(*layers);
+    }
     const OutputFolder folder(outDir, "--out", o.overwrite);
     InterruptGuard interrupt;
 
@@ -187,6 +204,10 @@ int runCommand(const RunOptions& o) {
             errors.add(f, runner.download(compared), compared + " frame " + std::to_string(f),
                        reference->forFrame(f), reference->fileFor(f).string(),
                        &runner.graph().camera());
+        if (referenceNoise)
+            floor.add(f, referenceNoise->forFrame(f), referenceNoise->fileFor(f).string(),
+                      reference->forFrame(f), reference->fileFor(f).string(),
+                      &runner.graph().camera());
         if (save.count(f)) {
             for (const auto& out : desc.outputs) {
                 const std::string name = out.source.str();
@@ -226,6 +247,14 @@ int runCommand(const RunOptions& o) {
         report.reference["path"] = o.reference;
         report.reference["mode"] = reference->perFrame() ? "per-frame" : "single";
         report.reference["output"] = compared;
+        if (referenceNoise) {
+            report.reference["noise_floor"] = floor.json();
+            report.reference["noise_floor"]["path"] = o.referenceNoise;
+            // docs/report-format.md: the error against the truth once the reference's own
+            // noise (half the floor's MSE) is taken out; 0 = within the reference's noise.
+            report.reference["mean"]["rmse_noise_corrected"] =
+                image::noiseCorrectedRmse(errors.mean().mse, floor.mean().mse);
+        }
     }
     // Written last: its presence and "finished" say whether the folder is complete.
     nlohmann::json json = buildReport(runner.graph(), report);

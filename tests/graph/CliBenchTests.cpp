@@ -140,6 +140,39 @@ TEST(CliBench, BadBenchFilesNameThePointer) {
         {[](json& j) { j["reference"] = "missing.exr"; }, {"/reference", "missing.exr"}},
         {[](json& j) { j["reference"]["render"]["spp"] = 0; }, {"/reference/render/spp"}},
         {[](json& j) { j["graphs"] = json::array(); }, {"/graphs", "non-empty"}},
+        // The protocol's keys (docs/bench.md): noise floor, extra references, layer radii.
+        {[](json& j) { j["noise_floor"] = 3; }, {"/noise_floor", "second reference"}},
+        {[](json& j) {
+             j["reference"] = "r.exr";
+             j["noise_floor"] = "render";
+         },
+         {"/noise_floor", "rendered /reference"}},
+        {[](json& j) { j["also_against"] = "x"; }, {"/also_against", "array"}},
+        {[](json& j) {
+             j["also_against"] = {{{"reference", "x.exr"}}};
+         },
+         {"/also_against/0", "missing field 'label'"}},
+        {[](json& j) {
+             j["also_against"] = {{{"label", "a"}, {"reference", "none.exr"}}};
+         },
+         {"/also_against/0/reference", "none.exr"}},
+        {[](json& j) {
+             j["also_against"] = {{{"label", "a"}, {"referenc", "x.exr"}}};
+         },
+         {"/also_against/0/referenc", "did you mean 'reference'"}},
+        {[](json& j) {
+             j["layers"] = {{"r0", 8}, {"r1", 4}};
+         },
+         {"/layers/r1", "smaller than r0"}},
+        {[](json& j) {
+             j["layers"] = {{"r0", 8}, {"r1", 16}, {"unit", "cm"}};
+         },
+         {"/layers/unit", "degrees"}},
+        {[](json& j) {
+             j["layers"] = {{"r0", "8"}, {"r1", 16}};
+         },
+         {"/layers/r0", "number"}},
+        {[](json& j) { j["noise_floor"] = "nofloor.exr"; }, {"/noise_floor", "nofloor.exr"}},
     };
     for (size_t i = 0; i < cases.size(); ++i) {
         json spec = tinyBench();
