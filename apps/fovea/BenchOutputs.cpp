@@ -133,8 +133,8 @@ void errorTable(std::ostream& t, const json& header, const std::vector<BenchResu
     auto row = [&](const std::string& name, const json& e, const json* fl) {
         const auto [worstFrame, worstPercent] = worstOf(e);
         t << "| " << md(name) << " | " << number(meanOf(e, "rmse_percent"), "%.4f") << " | "
-          << number(correctedPercent(e, fl), "%.4f") << " | " << worstFrame << " | "
-          << number(worstPercent, "%.4f");
+          << (fl ? number(correctedPercent(e, fl), "%.4f") : std::string("—")) << " | "
+          << worstFrame << " | " << number(worstPercent, "%.4f");
         if (!layers.empty())
             for (double v : layerRmsePercent(e)) t << " | " << number(v, "%.4f");
         t << " |\n";

@@ -72,7 +72,8 @@ TEST(ProtocolMetrics, PerLayerErrorMatchesACpuComputation) {
     for (int l = 0; l < 3; ++l) {
         ASSERT_GT(count[l], 0u) << l;
         EXPECT_EQ(layers[l].pixels, count[l]) << l;
-        EXPECT_NEAR(layers[l].rmse, std::sqrt(sum[l] / (3.0 * count[l])), 1e-12) << l;
+        // The code subtracts in float (the images' precision), the oracle in double.
+        EXPECT_NEAR(layers[l].rmse, std::sqrt(sum[l] / (3.0 * count[l])), 1e-6) << l;
     }
     EXPECT_EQ(layers[1].fromDegrees, 6.0);
     EXPECT_EQ(layers[2].fromDegrees, 14.0);
