@@ -1,6 +1,7 @@
 #include "passes/HistoryFix/HistoryFixPass.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/scene/Camera.h"
 #include "core/vk/Barriers.h"
@@ -32,6 +33,13 @@ void HistoryFixPass::params(graph::ParamVisitor& v) {
           "relative view-depth difference at which a coarse sample's weight reaches 0 (ours: the "
           "talk names UPSAMPLING_VIEWZ_SENSITIVITY without a value)",
           {1e-4, 10.0});
+    v.add("referenceHeight", mReferenceHeight, 1080.0f,
+          "image rows at which the talk's levels (4, 3, 2) and NRD's stride hold; at H rows the "
+          "level is shifted by round(log2(H / referenceHeight)) (a level <= 0 leaves the pixel "
+          "to the spatial blur) and the stride scaled by H / referenceHeight, so a rebuilt pixel "
+          "covers the same fraction of the view at any size (seed 004's figures are 720p-1440p). "
+          "0 = no scaling (pixel values as given)",
+          {0.0, 16384.0});
     v.add("eyes", mEyes, 0,
           "side-by-side eyes (nothing crosses the seam); 0 = the frame camera's eye count", {0, 2});
 }
@@ -75,6 +83,12 @@ void HistoryFixPass::execute(graph::ExecuteContext& ctx) {
         rows[l - 1] = (height + s - 1) / s;
     }
 
+    // Resolution scale (referenceHeight): the talk's 16-px level-4 blocks are 1.5 % of 1080 rows
+    // but 11 % of 144; at 144 rows every pixel of a cut took 16-px blocks and the RMSE rose
+    // (issue 13). scale = 1 and no shift without a reference height.
+    const float scale = mReferenceHeight > 0.0f ? float(height) / mReferenceHeight : 1.0f;
+    const int levelShift = int(std::lround(std::log2(scale)));
+
     if (mMethod == "mips") {
         ctx.bindFields(*mMipFirst);
         mMipFirst->set("size", glm::ivec2(width, height))
@@ -105,7 +119,8 @@ void HistoryFixPass::execute(graph::ExecuteContext& ctx) {
         .set("fixFrames", float(mFixFrames))
         .set("countOffset", mCountOffset)
         .set("method", int(mMethod == "stride"))
-        .set("baseStride", mBasePixelStride)
+        .set("baseStride", mBasePixelStride * scale)
+        .set("levelShift", levelShift)
         .set("depthSensitivity", mDepthSensitivity)
         .set("useCount", int(ctx.connected("count")));
     mFix->dispatch(cmd, out.width(), out.height());

@@ -25,6 +25,7 @@ private:
     float mCountOffset = 0.0f;
     float mBasePixelStride = 14.0f;
     float mDepthSensitivity = 0.05f;
+    float mReferenceHeight = 1080.0f;
     int mEyes = 0;
     std::unique_ptr<gpu::ComputePipeline> mMipFirst, mMipDown, mFix;
 };

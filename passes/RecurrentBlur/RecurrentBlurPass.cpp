@@ -30,13 +30,21 @@ void RecurrentBlurPass::params(graph::ParamVisitor& v) {
           "while N < 2/3 of it and fades the boost until 4/3 of it (specs §2)",
           {0, 3});
     v.add("maxBlurRadius", mMaxBlurRadius, 30.0f,
-          "px: blur radius at N = 0 and h = 1 (post-blur: twice this). Also sets the firefly "
+          "px at referenceHeight rows: blur radius at N = 0 and h = 1 (post-blur: twice this). "
+          "Also sets the firefly "
           "suppressor's strength",
           {0.0, 256.0});
     v.add("minBlurRadius", mMinBlurRadius, 1.0f, "px: smallest blur radius", {0.0, 256.0});
     v.add("prepassBlurRadius", mPrepassBlurRadius, 30.0f,
-          "temporal: px of the pre-blur at h = 1 (0 = off); fixes outliers before accumulation",
+          "temporal: px (at referenceHeight rows) of the pre-blur at h = 1 (0 = off); fixes "
+          "outliers before accumulation",
           {0.0, 256.0});
+    v.add("referenceHeight", mReferenceHeight, 1080.0f,
+          "image rows at which maxBlurRadius and prepassBlurRadius hold (NRD's pixel defaults "
+          "and the talk's timings are for 720p-1440p); at H rows both are scaled by "
+          "H / referenceHeight (30 px -> 4 px at 144 rows), minBlurRadius is not. 0 = radii in "
+          "pixels as given",
+          {0.0, 16384.0});
     v.add("radiusScaling", mRadiusScaling, "sqrt",
           "how the radius shrinks with N: sqrt = maxBlurRadius*sqrt(h*s') (NRD), linear = "
           "maxBlurRadius*h*s' (the talk's 1/(1+N)); s' = 1/(1+N) once HistoryFix is done",
@@ -169,6 +177,12 @@ RecurrentBlurPass::EyeLayout RecurrentBlurPass::eyeLayout(const gpu::Image& out,
     return {{int(out.width()), int(out.height())}, split.eyeWidth, split.eyes};
 }
 
+float RecurrentBlurPass::resolutionScale(const EyeLayout& e) const {
+    // Radii are pixels at referenceHeight rows; the blur covers the same fraction of the view
+    // at any size (issue 13: NRD's 30 px covered a fifth of a 144-row image).
+    return mReferenceHeight > 0.0f ? float(e.size.y) / mReferenceHeight : 1.0f;
+}
+
 void RecurrentBlurPass::blur(graph::ExecuteContext& ctx, const EyeLayout& e, const char* src,
                              const char* hit, const char* dst, int mode, float maxRadius) {
     // One dispatch of blur.comp (pre-blur, blur or post-blur by `mode`), then a barrier: every
@@ -187,7 +201,8 @@ void RecurrentBlurPass::executeTemporal(graph::ExecuteContext& ctx) {
     const EyeLayout e = eyeLayout(out, mEyes, ctx.camera().eyeCount);
 
     // Pre-blur: radiance -> preblurred (a = h). prepassBlurRadius 0 copies (sanitized).
-    blur(ctx, e, "radiance", "hit_distance", "preblurred", 0, mPrepassBlurRadius);
+    blur(ctx, e, "radiance", "hit_distance", "preblurred", 0,
+         mPrepassBlurRadius * resolutionScale(e));
 
     // Temporal accumulation. Both histories must hold a frame: the recurrent input (false on the
     // first frame, after a reset or cut) and our own geometry.
@@ -212,10 +227,10 @@ void RecurrentBlurPass::executeSpatial(graph::ExecuteContext& ctx) {
     const EyeLayout e = eyeLayout(out, mEyes, ctx.camera().eyeCount);
 
     // Blur: color -> blurred, radius from N (color.a) and h.
-    blur(ctx, e, "color", "hit", "blurred", 1, mMaxBlurRadius);
+    blur(ctx, e, "color", "hit", "blurred", 1, mMaxBlurRadius * resolutionScale(e));
 
     // Post-blur: blurred -> history (the recurrent feedback).
-    blur(ctx, e, "blurred", "hit", "history", 2, mMaxBlurRadius);
+    blur(ctx, e, "blurred", "hit", "history", 2, mMaxBlurRadius * resolutionScale(e));
 
     // Temporal stabilization of luminance (own history: stabilized).
     ctx.bindFields(*mStabilize);

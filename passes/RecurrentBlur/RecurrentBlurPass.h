@@ -33,6 +33,7 @@ private:
         int eyeWidth, eyes;
     };
     static EyeLayout eyeLayout(const gpu::Image& out, int eyesParam, uint32_t cameraEyes);
+    float resolutionScale(const EyeLayout& e) const;  // H / referenceHeight, or 1
     // One blur.comp dispatch (mode 0 pre-blur, 1 blur, 2 post-blur) from fields src/hit to dst.
     void blur(graph::ExecuteContext& ctx, const EyeLayout& e, const char* src, const char* hit,
               const char* dst, int mode, float maxRadius);
@@ -46,6 +47,7 @@ private:
     float mMaxBlurRadius = 30.0f;
     float mMinBlurRadius = 1.0f;
     float mPrepassBlurRadius = 30.0f;
+    float mReferenceHeight = 1080.0f;
     std::string mRadiusScaling = "sqrt";
     float mPlaneDistanceSensitivity = 0.02f;
     float mDisocclusionThreshold = 0.01f;

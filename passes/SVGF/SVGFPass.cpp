@@ -16,9 +16,11 @@ void SVGFPass::params(graph::ParamVisitor& v) {
     v.add("iterations", mIterations, 5,
           "a-trous levels; level i steps 2^i pixels (Schied et al. 2017 §4.3: 5)", {1.0f, 8.0f});
     v.add("feedbackTap", mFeedbackTap, 1,
-          "which level's output becomes the colour history: 1 = after the first level (§4.1, "
-          "the paper), k = after level k, 0 = the unfiltered temporal accumulation. (Falcor's "
-          "FeedbackTap counts from 0: its default 1 is our 2.) At most `iterations`",
+          "how many a-trous levels the colour history has been through: 0 = the unfiltered "
+          "temporal accumulation, 1 = the output of the first level (§4.1: the paper's "
+          "choice), k = of level k (1-based, counting levels). The specs' and Falcor's "
+          "FeedbackTap is a 0-based level index (-1 = unfiltered): their 0 is our 1, Falcor's "
+          "default 1 is our 2. At most `iterations`",
           {0.0f, 8.0f});
     v.add("alpha", mAlpha, 0.2f,
           "colour: minimum weight of the new sample, used as max(alpha, 1/h): the exact running "
@@ -28,8 +30,10 @@ void SVGFPass::params(graph::ParamVisitor& v) {
           "luminance moments: the same for the first and second moment (§4.2: 0.2)",
           {0.001f, 1.0f});
     v.add("sigmaLuminance", mSigmaLuminance, 4.0f,
-          "sigma_l of the luminance edge-stopping function, in standard deviations of the "
-          "prefiltered variance (§4.4, Eq. 5: 4; Falcor 10)",
+          "sigma_l of the a-trous luminance edge-stopping function, in standard deviations: "
+          "the larger of the centre's prefiltered and the tap's (§4.4, Eq. 5 uses the centre's "
+          "alone; symmetric here so that heavy-tailed noise keeps its mean, issue 12). Paper 4, "
+          "Falcor 10. The spatial variance estimate (§4.2) has no luminance term",
           {1e-3f, 1e6f});
     v.add("sigmaNormal", mSigmaNormal, 128.0f,
           "sigma_n: exponent of max(0, n_p . n_q) (§4.4, Eq. 4: 128); 0 turns the term off",
@@ -182,7 +186,6 @@ void SVGFPass::execute(graph::ExecuteContext& ctx) {
     mVariance->set("size", size)
         .set("radius", mSpatialRadius)
         .set("historyForVariance", mHistoryForVariance)
-        .set("sigmaLuminance", mSigmaLuminance)
         .set("sigmaNormal", mSigmaNormal)
         .set("sigmaDepth", mSigmaDepth);
     mVariance->dispatch(cmd, out.width(), out.height());

@@ -6,6 +6,8 @@
 //     frames (the talk's "frame 0 mip 4, frame 1 mip 3, frame 2 mip 2"), upsampled bilinearly
 //     with depth-aware weights [z_L > 0] * saturate(1 - |z_L - z| / (0.05 z)) (the talk names
 //     UPSAMPLING_VIEWZ_SENSITIVITY without a value; 0.05 is ours). No weight: the next finer level.
+//   Both sizes are for referenceHeight rows (1080): at H rows the level shifts by
+//   round(log2(H / referenceHeight)) and the stride scales by H / referenceHeight.
 //   method 1 (stride, NRD v4.14): 5x5 taps without centre and corners at a stride of
 //     floor(basePixelStride / (2 + N)) px, weight (1 + N_q) x the same depth weight; the sum starts
 //     with the pixel itself at weight 1 + N.
@@ -38,6 +40,7 @@ layout(push_constant) uniform Params {
     float baseStride;    // px (stride method)
     float depthSensitivity;
     int useCount;        // 1: N from count.a, else from color.a
+    int levelShift;      // round(log2(H / referenceHeight)), <= 0 below the reference height
 } pc;
 
 float countAt(ivec2 q, vec4 c) {
@@ -97,7 +100,9 @@ void main() {
     int x1 = eye == pc.eyes - 1 ? pc.size.x - 1 : x0 + pc.eyeWidth - 1;
     vec3 fixedColor = sanitize(c).rgb;
     if (pc.method == 0) {
-        int level = clamp(int(ceil(4.0 * (1.0 - n / pc.fixFrames))), 1, 4);  // fixFrames > 0 here
+        // The talk's level, shifted to this resolution; <= 0: finer than a 2x2 block, nothing to
+        // rebuild from (the loop does not run and the pixel keeps its value).
+        int level = min(int(ceil(4.0 * (1.0 - n / pc.fixFrames))) + pc.levelShift, 4);  // Nhf > 0
         for (int l = level; l >= 1; --l) {
             vec3 v;
             if (upsample(l, eye, p.x - x0, p.y, z, v)) {

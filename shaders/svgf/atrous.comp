@@ -2,8 +2,12 @@
 // One SVGF a-trous level (Schied et al. 2017 §4.3-4.4; specs §1 step 4): 5x5 taps at step
 // 2^level with the B3-spline kernel h = (1/16, 1/4, 3/8, 1/4, 1/16), weighted by depth (screen-
 // space gradient), normal and variance-guided luminance edge-stopping functions (Eq. 3-5). The
-// luminance term divides by sigma_l times the standard deviation of a 3x3 Gaussian prefilter of
-// the variance (§4.4). Variance is propagated as sum(w^2 var) / (sum w)^2. Misses pass through
+// luminance term divides by sigma_l times a standard deviation (§4.4, Eq. 5): the paper takes the
+// centre's (3x3 Gaussian prefilter of its variance); we take the larger of that and the tap's
+// variance, so that w(p, q) = w(q, p). With the centre's alone a zero-variance dark pixel rejects
+// its bright neighbours while a bright (high-variance) pixel accepts its dark ones: energy flows
+// one way and heavy-tailed noise loses its mean (the forest lost 20-28 %, issue 12). On a
+// homogeneous region both variances agree and sigma_l keeps the paper's calibration. Variance is propagated as sum(w^2 var) / (sum w)^2. Misses pass through
 // and weigh 0 as neighbours, as do pixels without data (h = 0, e.g. never-traced foveated
 // periphery), which this way are filled from their neighbours. The level `feedbackTap` also
 // writes the colour history (§4.1: the first level's output); the last level remodulates.
@@ -59,8 +63,7 @@ void main() {
     if (zp > 0.0) {
         vec2 grad = svgfDepthGradient(depth, p, pc.size, zp);
         float lp = luminance(centre.rgb);
-        // sigma_l > 0 (parameter range); 1e-10 keeps the division finite at zero variance.
-        float lumDen = pc.sigmaLuminance * sqrt(prefilteredVariance(p)) + 1e-10;
+        float varP = prefilteredVariance(p);  // >= 0
         float wc = imageLoad(accumulated, p).a > 0.0 ? kB3[0] * kB3[0] : 0.0;
         vec3 sumC = wc * centre.rgb;
         float sumV = wc * wc * centre.a;
@@ -74,6 +77,9 @@ void main() {
                 float zq = svgfDepthAt(depth, q);
                 if (zq <= 0.0 || !(imageLoad(accumulated, q).a > 0.0)) continue;
                 vec4 cq = imageLoad(atrous_in, q);
+                // Symmetric noise level (see the header). sigma_l > 0 (parameter range), the
+                // variances are >= 0 (clamped where made), 1e-10 keeps the division finite.
+                float lumDen = pc.sigmaLuminance * sqrt(max(varP, max(cq.a, 0.0))) + 1e-10;
                 float wgt = kB3[abs(dx)] * kB3[abs(dy)] *
                             svgfDepthWeight(zp, zq, grad, vec2(off), pc.sigmaDepth) *
                             svgfNormalWeight(np, svgfNormalAt(normal, q), pc.sigmaNormal) *

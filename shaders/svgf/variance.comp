@@ -2,9 +2,16 @@
 // SVGF variance estimate (Schied et al. 2017 §4.2; specs §1 step 3). var = max(0, mu2 - mu1^2)
 // from the temporally accumulated luminance moments; while the history is short (h below
 // `historyForVariance`) the moments are too few, so colour and moments are replaced by a
-// cross-bilateral (depth, normal, luminance) average over a (2r+1)^2 window and the variance is
-// scaled by 4/h (Falcor's boost of young pixels). The variance is clamped >= 0 before anyone takes
-// its square root (specs §1 F2; clamps counted in `stats`).
+// cross-bilateral average over a (2r+1)^2 window and the variance is scaled by 4/h (Falcor's
+// boost of young pixels). The variance is clamped >= 0 before anyone takes its square root
+// (specs §1 F2; clamps counted in `stats`).
+// The window is weighted by depth and normal only. Falcor adds a luminance term
+// exp(-|l_p - l_q| / sigma_l) on the absolute radiance scale; it removes exactly the dissimilar
+// samples whose spread this estimate measures, so on heavy-tailed noise (a few bright samples
+// among dark ones: the forest's 80 lights at 1 spp) a dark pixel saw zero variance, the bright
+// ones kept their value, and the window average lost 30-45 % of the energy in the first frames
+// (issue 12, docs/benchmarks.md "SVGF energy loss"). It also made sigma_l depend on the scene's
+// radiance units.
 #extension GL_GOOGLE_include_directive : require
 #include "svgf/svgf_common.glsl"
 
@@ -21,7 +28,6 @@ layout(push_constant) uniform Params {
     ivec2 size;
     int radius;
     float historyForVariance;
-    float sigmaLuminance;
     float sigmaNormal;
     float sigmaDepth;
 } pc;
@@ -43,7 +49,6 @@ void main() {
     if (h < pc.historyForVariance) {
         atomicAdd(stats.counters[SVGF_STAT_SPATIAL_VARIANCE], 1u);
         vec2 grad = svgfDepthGradient(depth, p, pc.size, zp);
-        float lp = luminance(C);
         vec3 sumC = vec3(0.0);
         vec2 sumM = vec2(0.0);
         float sumW = 0.0;
@@ -57,8 +62,7 @@ void main() {
                 float wgt = 1.0;
                 if (dx != 0 || dy != 0) {
                     wgt = svgfDepthWeight(zp, zq, grad, vec2(dx, dy), pc.sigmaDepth) *
-                          svgfNormalWeight(np, svgfNormalAt(normal, q), pc.sigmaNormal) *
-                          exp(-abs(lp - luminance(aq.rgb)) / pc.sigmaLuminance);  // sigma > 0
+                          svgfNormalWeight(np, svgfNormalAt(normal, q), pc.sigmaNormal);
                 }
                 sumC += wgt * aq.rgb;
                 sumM += wgt * imageLoad(hist_moments, q).xy;

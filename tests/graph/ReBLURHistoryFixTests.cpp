@@ -31,7 +31,8 @@ public:
         const std::string text =
             R"({ "version": 1, "name": "hf_test", "passes": [ { "name": "feed", "type": "Feed" },
                { "name": "hf", "type": "HistoryFix", "params": )" +
-            params + R"( } ], "edges": [ )" + edges + R"( ], "outputs": [ "hf.result" ] })";
+            test::ReblurRig::pixelSizes(params) + R"( } ], "edges": [ )" + edges +
+            R"( ], "outputs": [ "hf.result" ] })";
         graph::CompileOptions o;
         o.width = uint32_t(w);
         o.height = uint32_t(h);
@@ -169,4 +170,26 @@ TEST_F(HistoryFixTest, SeparateCountWithOffset) {
         else
             ASSERT_NE(out[i], in[i]) << "pixel " << i / 4;
     }
+}
+
+// Resolution scale (issue 13): with referenceHeight 256 a 64-row image is 4x smaller, so the
+// talk's levels 4, 3, 2 for N = 0, 1, 2 shift down by 2 to 2, 1, 0: N = 2 has no level left and
+// passes bit-exactly, N = 0 and 1 are still rebuilt. The stride method's 7-px stride at N = 0
+// becomes floor(14 / 4 / 2) = 1 px.
+TEST_F(HistoryFixTest, ReferenceHeightShiftsTheLevel) {
+    const int w = 64, h = 64;
+    const Image depth = test::facingPlane(w, h, 5.0f).depth;
+    const Image in = noisyPlane(w, h, 0.3f, 8, [](int x, int) { return float(x % 4); });
+    FixRig rig(ctx(), w, h, R"({ "referenceHeight": 256 })");
+    const Image out = rig.run(in, depth);
+    int changed[4] = {0, 0, 0, 0}, total[4] = {0, 0, 0, 0};
+    for (size_t i = 0; i < out.size(); i += 4) {
+        const int n = int(in[i + 3]);
+        ++total[n];
+        if (out[i] != in[i]) ++changed[n];
+    }
+    EXPECT_EQ(changed[2], 0);
+    EXPECT_EQ(changed[3], 0);
+    EXPECT_GT(changed[0], total[0] * 9 / 10);
+    EXPECT_GT(changed[1], total[1] * 9 / 10);
 }

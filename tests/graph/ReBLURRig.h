@@ -111,7 +111,8 @@ public:
             R"("rbt.preblurred", "rbt.accumulated", "rbt.hit", "rbt.radius", "rbs.blurred", )"
             R"("rbs.history", "rbs.result", "rbs.radius")";
         if (historyFix) {
-            passes += R"(, { "name": "hf", "type": "HistoryFix", "params": )" + fixParams + " }";
+            passes += R"(, { "name": "hf", "type": "HistoryFix", "params": )" +
+                      pixelSizes(fixParams) + " }";
             edges += R"({ "from": "rbt.accumulated", "to": "hf.color" },
                         { "from": "feed.depth", "to": "hf.depth" },
                         { "from": "hf.result", "to": "rbs.color" })";
@@ -158,11 +159,23 @@ public:
 private:
     // {"a": 1} -> {"stage": "x", "a": 1}
     static std::string withStage(std::string params, const char* stage) {
+        return withKey(pixelSizes(params), std::string(R"( "stage": ")") + stage + "\"");
+    }
+    static std::string withKey(std::string params, const std::string& key) {
         const bool empty = params.find_first_not_of(" {}") == std::string::npos;
-        const std::string key = std::string(R"( "stage": ")") + stage + "\"";
         if (empty) return "{" + key + " }";
         return params.insert(params.find('{') + 1, key + ",");
     }
+
+public:
+    // The tests' images are 8-64 px: radii, levels and strides are given in pixels
+    // (referenceHeight 0) unless a test sets a reference height itself.
+    static std::string pixelSizes(const std::string& params) {
+        if (params.find("referenceHeight") != std::string::npos) return params;
+        return withKey(params, R"( "referenceHeight": 0)");
+    }
+
+private:
     gpu::Image& target(const std::string& name) {
         return const_cast<gpu::Image&>(mGraph.image(name));
     }

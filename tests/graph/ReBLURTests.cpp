@@ -170,6 +170,27 @@ TEST_F(ReBLURTest, RadiusPerFrameCountMatchesTable) {
     }
 }
 
+// Resolution scale (issue 13): maxBlurRadius is pixels at referenceHeight rows. On 8 rows with
+// referenceHeight 16 the table halves: 15 px at N = 0, 2.694 at N = 30 (sqrt); minBlurRadius
+// (1 px) is not scaled.
+TEST_F(ReBLURTest, RadiusScalesWithReferenceHeight) {
+    const int w = 8, h = 8;
+    ReblurRig rig(ctx(), w, h, "{}", R"({ "referenceHeight": 16 })");
+    rig.init();
+    rig.setGeometry(test::facingPlane(w, h, 5.0f));
+    const Image in = test::constantImage(w, h, 0.5f, 0.5f, 0.5f);
+    for (int f = 0; f <= 30; ++f) {
+        rig.frame(in);
+        const float r = rig.get("rbs.radius")[(size_t(4) * w + 4) * 4];
+        if (f == 0) {
+            EXPECT_NEAR(r, 15.0f, 0.01f);
+        }
+        if (f == 30) {
+            EXPECT_NEAR(r, 2.694f, 0.01f);
+        }
+    }
+}
+
 // NaN/Inf radiance, a NaN hit distance and a NaN normal on one frame: every output of every
 // stage stays finite in that frame and all later ones, and the image returns to the clean value
 // (the feedback loop would otherwise keep a NaN forever).

@@ -280,3 +280,43 @@ TEST_F(SVGFGpu, FeedbackTapBeyondIterationsIsAClearError) {
         EXPECT_NE(std::string(e.what()).find("/params/feedbackTap"), std::string::npos) << e.what();
     }
 }
+
+// Specs §1 oracle 6: once h >= historyForVariance (4) the variance pass leaves the accumulated
+// colour bit-exact and only derives var = max(0, mu2 - mu1^2) from the moments; while h < 4 it
+// replaces the colour by the spatial estimate. With iterations 1 the ping-pong image atrous_a
+// still holds the variance pass's output after the frame.
+TEST_F(SVGFGpu, VariancePassIsBitExactOnceTheHistoryIsLong) {
+    const int size = 32;
+    SvgfInputs in = randomScene(size, size, 4);
+    SvgfHarness h(ctx(), in, R"({ "iterations": 1 })");
+    for (int f = 0; f < 6; ++f) {
+        recolor(in, 100u + uint32_t(f));
+        h.upload(in, true);
+        h.runFrame();
+        const auto acc = h.read("accumulated");
+        const auto var = h.read("atrous_a");
+        const auto mom = h.read("hist_moments");
+        int hits = 0, exact = 0;
+        for (int i = 0; i < size * size; ++i) {
+            const size_t k = size_t(i) * 4;
+            if (!(acc[k + 3] > 0.0f)) continue;
+            ++hits;
+            bool same = true;
+            for (int c = 0; c < 3; ++c) same = same && var[k + size_t(c)] == acc[k + size_t(c)];
+            exact += same;
+            if (acc[k + 3] >= 4.0f) {
+                ASSERT_TRUE(same) << "pixel " << i << " frame " << f;
+                const double want =
+                    std::max(0.0, double(mom[k + 1]) - double(mom[k]) * double(mom[k]));
+                ASSERT_NEAR(var[k + 3], want, 1e-5 * std::max(1.0, want)) << "pixel " << i;
+            }
+        }
+        ASSERT_GT(hits, size * size / 2);
+        // h = f + 1: the spatial path runs (and changes almost every colour) in frames 0-2.
+        if (f < 3) {
+            EXPECT_LT(exact, hits / 10) << "frame " << f;
+        } else {
+            EXPECT_EQ(exact, hits) << "frame " << f;
+        }
+    }
+}

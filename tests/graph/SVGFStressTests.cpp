@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -125,6 +126,12 @@ TEST_F(SVGFStress, NanAndInfinityInEveryInputNeverReachTheOutputs) {
 }
 
 TEST_F(SVGFStress, FireflyStaysBoundedAndKeepsTheFrameMean) {
+    // Specs §1 F5: a 1e4 firefly on a dark plane in the first frame (h = 1). Its variance says
+    // "noise", so the filter spreads it (energy-preserving) instead of keeping a 1e4 dot; the
+    // spread is bounded by the reach of the 7x7 spatial estimate (3 px) plus 3 levels
+    // (2 * (1 + 2 + 4) = 14 px), and the frame mean stays within 2.5 % (the normalized
+    // edge-stopping weights are not exactly mean-preserving: 2 % measured here, 0 % when the
+    // old centre-only luminance test left the firefly unfiltered, issue 12).
     const int size = 48;
     SvgfInputs in = occluderScene(size, -1, 1);
     for (size_t i = 0; i < in.color.size(); ++i)
@@ -133,21 +140,21 @@ TEST_F(SVGFStress, FireflyStaysBoundedAndKeepsTheFrameMean) {
     SvgfHarness h(ctx(), in, R"({ "iterations": 3 })");
     h.runFrame();
     auto out = h.read("illumination");
-    double meanIn = 0.0, meanOut = 0.0;
+    double meanIn = 0.0, meanOut = 0.0, peak = 0.0;
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x) {
             const size_t i = in.at(x, y);
             meanIn += in.color[i];
             meanOut += out[i];
-            // 3 levels reach 2 * (1 + 2 + 4) = 14 pixels: nothing beyond is touched.
-            if (std::max(std::abs(x - 24), std::abs(y - 24)) > 14) {
+            peak = std::max(peak, double(out[i]));
+            if (std::max(std::abs(x - 24), std::abs(y - 24)) > 17) {
                 ASSERT_NEAR(out[i], 0.01f, 1e-6f) << x << "," << y;
             }
-            ASSERT_LE(out[i], 1e4f);
+            ASSERT_GE(out[i], 0.0f);
         }
-    EXPECT_NEAR(meanOut / meanIn, 1.0, 0.01);
-    // The firefly is not smeared into a visible blob: pixels 3+ away stay near the background.
-    EXPECT_LT(out[in.at(27, 24)], 1.0f);
+    EXPECT_NEAR(meanOut / meanIn, 1.0, 0.025);
+    // Spread, not kept: no pixel keeps more than 1 % of the firefly.
+    EXPECT_LT(peak, 100.0);
 }
 
 TEST_F(SVGFStress, CameraCutEveryFrameRestartsCleanly) {
@@ -225,4 +232,35 @@ TEST_F(SVGFStress, HistoryLengthIsTheWeightedAverageOfTheKeptTaps) {
     // The border pixel's second tap is outside the image: the kept one's weight is renormalized
     // (border pixels accumulate like the rest).
     EXPECT_EQ(acc[in.at(15, 5) + 3], 5.0f);
+}
+
+TEST_F(SVGFStress, HeavyTailedNoiseKeepsItsMean) {
+    // Issue 12 (the forest came out 20-28 % darker than its input): a still plane whose
+    // every frame has exactly 10 % of its pixels at 10 and the rest at 0 (mean 1, standard
+    // deviation 3: few bright samples among dark ones, as 1 spp from many small lights). The
+    // filtered mean stays within 5 % of 1 in each of 8 frames. Before the fix the spatial
+    // variance estimate's absolute-scale luminance term and the centre-only (asymmetric)
+    // luminance weight lost 49 % in the first frame and 19 % after 8.
+    const int size = 64;
+    SvgfInputs in = occluderScene(size, -1, 1);
+    std::mt19937 rng(5);
+    std::vector<size_t> order(size_t(size) * size);
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    SvgfHarness h(ctx(), in, "{}");
+    for (int f = 0; f < 8; ++f) {
+        std::shuffle(order.begin(), order.end(), rng);
+        for (size_t k = 0; k < order.size(); ++k) {
+            const float v = k < order.size() / 10 ? 10.0f : 0.0f;
+            for (int c = 0; c < 3; ++c) in.color[order[k] * 4 + size_t(c)] = v;
+            in.color[order[k] * 4 + 3] = 1.0f;
+        }
+        const double meanIn = 10.0 * double(order.size() / 10) / double(order.size());
+        h.upload(in, true);
+        h.runFrame();
+        const auto out = h.read("illumination");
+        double meanOut = 0.0;
+        for (size_t i = 0; i < order.size(); ++i) meanOut += out[i * 4 + 1];
+        meanOut /= double(order.size());
+        EXPECT_NEAR(meanOut / meanIn, 1.0, 0.05) << "frame " << f;
+    }
 }

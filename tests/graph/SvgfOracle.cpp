@@ -72,7 +72,6 @@ std::vector<double> SvgfOracle::atrousLevel(const SvgfOracleParams& p, int w, in
                     const double k = (dx == 0 ? 0.5 : 0.25) * (dy == 0 ? 0.5 : 0.25);
                     var += k * in[(size_t(qy) * size_t(w) + size_t(qx)) * 4 + 3];
                 }
-            const double lumDen = p.sigmaLuminance * std::sqrt(std::max(var, 0.0)) + 1e-10;
             const double wc = hasData[i] ? kB3[0] * kB3[0] : 0.0;
             double sum[3] = {wc * in[i * 4], wc * in[i * 4 + 1], wc * in[i * 4 + 2]};
             double sumV = wc * wc * in[i * 4 + 3], sumW = wc;
@@ -84,10 +83,15 @@ std::vector<double> SvgfOracle::atrousLevel(const SvgfOracleParams& p, int w, in
                     const size_t q = size_t(qy) * size_t(w) + size_t(qx);
                     const double zq = depthAt(depth, w, qx, qy);
                     if (zq <= 0.0 || !hasData[q]) continue;
-                    const double wgt = kB3[std::abs(dx)] * kB3[std::abs(dy)] *
-                                       depthWeight(zp, zq, g, step * dx, step * dy, p.sigmaDepth) *
-                                       normalWeight(&normal[i * 4], &normal[q * 4], p.sigmaNormal) *
-                                       std::exp(-std::fabs(lp - luminance709(&in[q * 4])) / lumDen);
+                    const double wgt =
+                        kB3[std::abs(dx)] * kB3[std::abs(dy)] *
+                        depthWeight(zp, zq, g, step * dx, step * dy, p.sigmaDepth) *
+                        normalWeight(&normal[i * 4], &normal[q * 4], p.sigmaNormal) *
+                        std::exp(
+                            -std::fabs(lp - luminance709(&in[q * 4])) /
+                            (p.sigmaLuminance * std::sqrt(std::max(std::max(var, 0.0),
+                                                                   std::max(in[q * 4 + 3], 0.0))) +
+                             1e-10));
                     for (int c = 0; c < 3; ++c) sum[c] += wgt * in[q * 4 + size_t(c)];
                     sumV += wgt * wgt * in[q * 4 + 3];
                     sumW += wgt;
@@ -170,7 +174,6 @@ void SvgfOracle::frame(const SvgfOracleFrame& f, bool history) {
             if (hl < mP.historyForVariance) {
                 double g[2];
                 depthGradient(depth, w, h, x, y, zp, g);
-                const double lp = luminance709(C);
                 double sC[3] = {0, 0, 0}, sM[2] = {0, 0}, sW = 0.0;
                 const int r = mP.spatialRadius;
                 for (int dy = -r; dy <= r; ++dy)
@@ -183,9 +186,7 @@ void SvgfOracle::frame(const SvgfOracleFrame& f, bool history) {
                         double wgt = 1.0;
                         if (dx != 0 || dy != 0)
                             wgt = depthWeight(zp, zq, g, dx, dy, mP.sigmaDepth) *
-                                  normalWeight(&normal[i * 4], &normal[q * 4], mP.sigmaNormal) *
-                                  std::exp(-std::fabs(lp - luminance709(&mAccumulated[q * 4])) /
-                                           mP.sigmaLuminance);
+                                  normalWeight(&normal[i * 4], &normal[q * 4], mP.sigmaNormal);
                         for (int c = 0; c < 3; ++c) sC[c] += wgt * mAccumulated[q * 4 + size_t(c)];
                         sM[0] += wgt * moments[q * 2];
                         sM[1] += wgt * moments[q * 2 + 1];
