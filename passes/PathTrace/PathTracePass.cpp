@@ -42,6 +42,15 @@ void PathTracePass::params(graph::ParamVisitor& v) {
     v.add("clampIndirect", mClampIndirect, 0.0f,
           "firefly clamp: largest channel of one indirect contribution (biased); 0 = off",
           {0.0, 1e30});
+    v.add("lastBounceMis", mLastBounceMis, kLastBounceMisDefault,
+          "one more BRDF-sampled ray at the last path vertex, looking for an emitter, combined "
+          "with that vertex's shadow ray by MIS (Veach 1997 §9.2, power heuristic): bounds the "
+          "noise next to lights; false = the strict P2 §3.1 ray budget (the last shadow ray "
+          "alone, full weight)");
+    v.add("stratifyLight", mStratifyLight, false,
+          "the primary vertex's light samples of one pixel form a randomly shifted "
+          "low-discrepancy set (R-sequence) instead of independent points: unbiased, less noise "
+          "at several samples per pixel (no effect at spp 1)");
     v.add("countRays", mCountRays, false,
           "benchmarks: count every traced ray by kind (atomic counters; rayCounts())");
 }
@@ -86,6 +95,8 @@ void PathTracePass::compile(graph::CompileContext& ctx) {
     bool ggx = mBrdf == "ggx";
     defines.emplace_back("BRDF_GGX", ggx ? "1" : "0");
     defines.emplace_back("PATHTRACE_COUNT_RAYS", mCountRays ? "1" : "0");
+    defines.emplace_back("PATHTRACE_LAST_MIS", mLastBounceMis ? "1" : "0");
+    defines.emplace_back("PATHTRACE_STRATIFY_LIGHT", mStratifyLight ? "1" : "0");
     mUseVisibility = ctx.connected("visibility");
     mUseAlbedo = ctx.connected("albedo");
     mUseLayout = ctx.connected(sampling::kSampleLayoutField);
@@ -96,13 +107,14 @@ void PathTracePass::compile(graph::CompileContext& ctx) {
                ",bounces=" + std::to_string(mMaxBounces) +
                ",primary=" + (mUseVisibility ? "gbuffer" : "own") +
                (mUseLayout ? ",layout" : ",spp=" + std::to_string(mSpp)) +
+               (mLastBounceMis ? ",last-mis" : "") + (mStratifyLight ? ",stratified" : "") +
                (mCountRays ? ",count-rays" : "");
     mTrace = ctx.createPipeline("pathtrace/pathtrace.comp", defines,
                                 {sampling::kSampleLayoutBinding, "pathtrace_rays"});
     mRayCounter.reset();
     mCounterCleared = false;
     if (mCountRays)
-        mRayCounter = std::make_unique<gpu::Buffer>(ctx.gpu(), 16,
+        mRayCounter = std::make_unique<gpu::Buffer>(ctx.gpu(), kRayKinds * sizeof(uint32_t),
                                                     vk::BufferUsageFlagBits::eStorageBuffer |
                                                         vk::BufferUsageFlagBits::eTransferSrc |
                                                         vk::BufferUsageFlagBits::eTransferDst,
@@ -148,8 +160,8 @@ void PathTracePass::execute(graph::ExecuteContext& ctx) {
     mTrace->dispatch(ctx.cmd(), out.width(), out.height());
 }
 
-std::array<uint64_t, 4> PathTracePass::rayCounts(const gpu::Context& context) const {
-    std::array<uint64_t, 4> out{};
+PathTracePass::RayCounts PathTracePass::rayCounts(const gpu::Context& context) const {
+    RayCounts out{};
     if (!mRayCounter || !mCounterCleared) return out;
     auto counts = mRayCounter->downloadAs<uint32_t>(context);
     for (size_t k = 0; k < out.size() && k < counts.size(); ++k) out[k] = counts[k];
@@ -159,11 +171,9 @@ std::array<uint64_t, 4> PathTracePass::rayCounts(const gpu::Context& context) co
 nlohmann::json PathTracePass::statistics(const graph::StatisticsContext& ctx) const {
     if (!mRayCounter || !mCounterCleared) return nullptr;
     const auto c = rayCounts(ctx.gpu);
-    return {{"rays_primary", c[0]},
-            {"rays_shadow_primary", c[1]},
-            {"rays_indirect", c[2]},
-            {"rays_shadow_indirect", c[3]},
-            {"rays_total", c[0] + c[1] + c[2] + c[3]}};
+    return {{"rays_primary", c[0]},   {"rays_shadow_primary", c[1]},
+            {"rays_indirect", c[2]},  {"rays_shadow_indirect", c[3]},
+            {"rays_last_brdf", c[4]}, {"rays_total", c[0] + c[1] + c[2] + c[3] + c[4]}};
 }
 
 }  // namespace fovea::passes

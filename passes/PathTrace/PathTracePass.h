@@ -31,25 +31,33 @@ public:
     // Random per frame and seed: never cacheable (the default).
     std::string variant() const override { return mVariant; }
 
-    // With countRays on: rays traced since the last compile (build), by kind (primary, shadow from
-    // the primary hit, indirect, shadow from indirect hits). Waits for the GPU. Zeros otherwise.
-    std::array<uint64_t, 4> rayCounts(const gpu::Context& context) const;
+    // Ray kinds counted with countRays: primary, shadow from the primary hit, indirect, shadow
+    // from indirect hits, the last vertex's emitter-seeking BRDF ray (lastBounceMis).
+    static constexpr size_t kRayKinds = 5;
+    using RayCounts = std::array<uint64_t, kRayKinds>;
+    // With countRays on: rays traced since the last compile (build), by kind. Waits for the GPU.
+    // Zeros otherwise.
+    RayCounts rayCounts(const gpu::Context& context) const;
     // report.json: the same counts (with countRays on), by kind and in total.
     nlohmann::json statistics(const graph::StatisticsContext& ctx) const override;
 
 private:
+    // Default of lastBounceMis: see docs/passes/PathTrace.md "Emission and MIS".
+    static constexpr bool kLastBounceMisDefault = false;
     int mSpp = 1;
     int mMaxBounces = 1;
     std::string mBrdf = "lambert";
     float mClampIndirect = 0.0f;
     bool mCountRays = false;
+    bool mLastBounceMis = kLastBounceMisDefault;
+    bool mStratifyLight = false;
 
     std::string mVariant;
     bool mUseVisibility = false, mUseAlbedo = false, mUseLayout = false;
     std::unique_ptr<gpu::ComputePipeline> mTrace;
     std::unique_ptr<gpu::ComputePipeline> mClear;
     std::unique_ptr<sampling::SampleLayoutInput> mLayoutInput;
-    std::unique_ptr<gpu::Buffer> mRayCounter;  // countRays: 4 x uint32, summed on the GPU
+    std::unique_ptr<gpu::Buffer> mRayCounter;  // countRays: kRayKinds x uint32, summed on GPU
     bool mCounterCleared = false;              // zeroed by the first execute after compile
 };
 

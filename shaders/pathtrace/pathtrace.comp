@@ -4,9 +4,12 @@
 // `visibility` or an own jittered camera ray), next-event estimation (one shadow ray to a random
 // point on a random light), then `maxBounces` (default 1) BRDF-sampled indirect rays, each
 // followed by next-event estimation at its hit. Emission found by an indirect ray is combined
-// with next-event estimation by multiple importance sampling (power heuristic); at the last
-// vertex no ray follows, so its shadow ray takes full weight (docs/passes/PathTrace.md
-// "Emission and MIS").
+// with next-event estimation by multiple importance sampling (Veach & Guibas 1995, Veach 1997
+// §9.2, power heuristic beta = 2). At the last vertex (PATHTRACE_LAST_MIS, parameter
+// lastBounceMis) one more BRDF-sampled ray looks for an emitter only and is MIS-weighted against
+// that vertex's shadow ray, which bounds the estimate where the light sample's area-to-solid-
+// angle factor d^2 / (A cos) explodes (points next to an emitter); without it the last shadow
+// ray takes full weight (docs/passes/PathTrace.md "Emission and MIS").
 //
 // Random numbers: a stateless hash of (pixel, frame, sample, bounce, dimension, graph seed)
 // (shaders/common/random.glsl), so reruns are bit-identical on one driver.
@@ -33,13 +36,18 @@ layout(rgba16f) uniform writeonly image2D indirect;
 #ifndef PATHTRACE_COUNT_RAYS
 #define PATHTRACE_COUNT_RAYS 0
 #endif
+#ifndef PATHTRACE_LAST_MIS
+#define PATHTRACE_LAST_MIS 0
+#endif
 #if PATHTRACE_COUNT_RAYS
-// Benchmark builds (parameter countRays): rays traced, by kind: x primary (own camera rays),
-// y shadow rays from the primary hit, z indirect rays, w shadow rays from indirect hits.
+// Benchmark builds (parameter countRays): rays traced, by kind: 0 primary (own camera rays),
+// 1 shadow rays from the primary hit, 2 indirect rays, 3 shadow rays from indirect hits, 4 the
+// last vertex's emitter-seeking BRDF rays (lastBounceMis).
+const int kRayKinds = 5;
 layout(std430) buffer PathTraceRays {
-    uint counts[4];
+    uint counts[kRayKinds];
 } pathtrace_rays;
-uvec4 gRays = uvec4(0u);
+uint gRays[kRayKinds] = uint[kRayKinds](0u, 0u, 0u, 0u, 0u);
 #define COUNT_RAY(kind) (gRays[kind] += 1u)
 #else
 #define COUNT_RAY(kind)
@@ -76,6 +84,32 @@ uint gSampleSeed;
 float rand(uint vertex, uint dim) {
     return uintToUnitFloat(hashCombine(gSampleSeed, vertex * kDimsPerVertex + dim));
 }
+
+#ifndef PATHTRACE_STRATIFY_LIGHT
+#define PATHTRACE_STRATIFY_LIGHT 0
+#endif
+#if PATHTRACE_STRATIFY_LIGHT
+// Parameter stratifyLight: the light samples of the primary vertex (light column, point on the
+// triangle) of one pixel's samples form a randomly shifted 3-D R-sequence (Roberts 2018,
+// additive recurrence with the generalized golden ratio phi_3, x^4 = x + 1), i.e. a
+// Cranley-Patterson rotation of a low-discrepancy point set: each point is uniform (the shift
+// is), so the estimate stays unbiased, and the pixel's samples cover the light evenly instead of
+// clumping. With GBuffer primaries all samples of a pixel shade the same point, so this is
+// stratified direct lighting at that point. The alias coin (u.y) stays independent.
+uint gPixelSeed;
+uint gSampleIndex;
+const vec3 kR3 = vec3(0.8191725134, 0.6710436067, 0.5497004779);  // 1/phi_3, 1/phi_3^2, ^3
+vec4 primaryLightSample() {
+    vec3 shift = vec3(uintToUnitFloat(hashCombine(gPixelSeed, 0xA511u)),
+                      uintToUnitFloat(hashCombine(gPixelSeed, 0xA512u)),
+                      uintToUnitFloat(hashCombine(gPixelSeed, 0xA513u)));
+    vec3 u = fract(shift + float(gSampleIndex) * kR3);
+    // GLSL does not promise fract < 1 exactly: clamp to the largest float below 1, as
+    // uintToUnitFloat's range [0, 1).
+    u = min(u, vec3(0.99999994));
+    return vec4(u.x, rand(1u, kDimLight + 1u), u.y, u.z);
+}
+#endif
 
 float maxComponent(vec3 v) { return max(v.x, max(v.y, v.z)); }
 
@@ -134,13 +168,20 @@ struct PathResult {
 vec3 nextEvent(Vertex v, uint vertex, bool last) {
     SceneLightSample ls;
     vec3 p = bvhOffsetRay(v.position, v.ng);
+#if PATHTRACE_STRATIFY_LIGHT
+    vec4 u = vertex == 1u ? primaryLightSample()
+                          : vec4(rand(vertex, kDimLight), rand(vertex, kDimLight + 1u),
+                                 rand(vertex, kDimLight + 2u), rand(vertex, kDimLight + 3u));
+#else
     vec4 u = vec4(rand(vertex, kDimLight), rand(vertex, kDimLight + 1u),
                   rand(vertex, kDimLight + 2u), rand(vertex, kDimLight + 3u));
+#endif
     if (!sceneSampleLight(p, u, ls)) return vec3(0.0);
     float cosS = dot(v.ns, ls.direction);
     if (cosS <= 0.0 || dot(v.ng, ls.direction) <= 0.0) return vec3(0.0);
     vec3 f = brdfEval(v.brdf, v.ns, v.wo, ls.direction);
     if (maxComponent(f) <= 0.0) return vec3(0.0);
+    // `last` is false for every vertex when the last one also traces a BRDF ray (LAST_MIS).
     float w = (ls.isDelta || last)
                   ? 1.0
                   : powerHeuristic(ls.pdf, brdfPdf(v.brdf, v.ns, v.wo, ls.direction));
@@ -194,12 +235,19 @@ PathResult tracePath(uvec2 pixel, bool haveVisibility, uvec4 vis) {
     for (int depth = 0; depth <= bounces; ++depth) {
         uint vertex = uint(depth) + 1u;
         bool last = depth == bounces;
+#if PATHTRACE_LAST_MIS
+        // The last vertex traces a BRDF ray too, so its shadow ray is MIS-weighted as well.
+        vec3 ne = throughput * nextEvent(v, vertex, false);
+#else
         vec3 ne = throughput * nextEvent(v, vertex, last);
+#endif
         if (depth == 0)
             r.direct += ne;
         else
             r.indirect += clampContribution(ne);
+#if !PATHTRACE_LAST_MIS
         if (last) break;
+#endif
 
         vec3 u = vec3(rand(vertex, kDimBrdf), rand(vertex, kDimBrdf + 1u),
                       rand(vertex, kDimBrdf + 2u));
@@ -211,9 +259,30 @@ PathResult tracePath(uvec2 pixel, bool haveVisibility, uvec4 vis) {
         if (maxComponent(throughput) <= 0.0) break;
         vec3 p = bvhOffsetRay(v.position, v.ng);
         BvhHit hit;
+#if PATHTRACE_LAST_MIS
+        COUNT_RAY(last ? 4 : 2);
+        if (!bvhClosestHit(p, wi, 0.0, kInfinity, hit)) break;
+        if (depth == 0 && !last) r.hitT = hit.t;  // hit_distance: the first *indirect* ray
+        if (last) {
+            // Only the emission this ray finds counts: the path ends here (no shading of the
+            // hit, no further shadow ray).
+            SceneSurface hs = sceneSurface(hit.triangle, hit.barycentrics);
+            vec3 le = sceneEmission(hs.material, hs.uv, dot(hs.geometricNormal, wi) < 0.0);
+            if (maxComponent(le) > 0.0) {
+                float lightPdf = sceneEmitterPdf(hit.triangle, p, hs.position);
+                vec3 e = throughput * le * powerHeuristic(brdfPdfValue, lightPdf);
+                if (depth == 0)
+                    r.direct += e;
+                else
+                    r.indirect += clampContribution(e);
+            }
+            break;
+        }
+#else
         COUNT_RAY(2);
         if (!bvhClosestHit(p, wi, 0.0, kInfinity, hit)) break;
         if (depth == 0) r.hitT = hit.t;
+#endif
         Vertex next = makeVertex(hit.triangle, hit.barycentrics, wi);
         if (maxComponent(next.emitted) > 0.0) {
             // The light-sampling strategy could have produced this direction too (MIS).
@@ -260,6 +329,10 @@ void main() {
     uint hits = 0u;
     for (uint s = 0u; s < samples; ++s) {
         gSampleSeed = hashCombine(pixelSeed, s);
+#if PATHTRACE_STRATIFY_LIGHT
+        gPixelSeed = pixelSeed;
+        gSampleIndex = s;
+#endif
         PathResult r = tracePath(pixel, haveVisibility, vis);
         // A non-finite sample (degenerate data) contributes nothing rather than poisoning the
         // pixel; it still counts as traced.
@@ -273,7 +346,7 @@ void main() {
         }
     }
 #if PATHTRACE_COUNT_RAYS
-    for (int k = 0; k < 4; ++k)
+    for (int k = 0; k < kRayKinds; ++k)
         if (gRays[k] > 0u) atomicAdd(pathtrace_rays.counts[k], gRays[k]);
 #endif
     float n = float(samples);  // >= 1: sampleLayoutWorkItem returns false for 0 samples

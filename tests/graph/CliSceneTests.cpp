@@ -195,7 +195,8 @@ TEST(CliScene, ReportCarriesPathTraceRayCounts) {
                   s.at("rays_primary").get<uint64_t>() +
                       s.at("rays_shadow_primary").get<uint64_t>() +
                       s.at("rays_indirect").get<uint64_t>() +
-                      s.at("rays_shadow_indirect").get<uint64_t>());
+                      s.at("rays_shadow_indirect").get<uint64_t>() +
+                      s.at("rays_last_brdf").get<uint64_t>());
         EXPECT_GT(s.at("rays_indirect").get<uint64_t>(), 0u);
     }
 }

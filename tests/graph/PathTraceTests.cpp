@@ -420,15 +420,16 @@ TEST_F(PathTraceTest, DISABLED_BenchmarkMraysPerSecond) {
         const auto& rec = g->records().at(g->plan().findNode("pt"));
         double ms = 0;
         for (size_t f = rec.gpuMs.size() - frames; f < rec.gpuMs.size(); ++f) ms += rec.gpuMs[f];
-        uint64_t kinds[4], total = 0;
-        for (int k = 0; k < 4; ++k) total += kinds[k] = after[k] - before[k];
+        passes::PathTracePass::RayCounts kinds{};
+        uint64_t total = 0;
+        for (size_t k = 0; k < kinds.size(); ++k) total += kinds[k] = after[k] - before[k];
         std::printf(
             "[ PathTrace ] %s 640x360 %s: %d frames, %.1f ms GPU/frame, rays/frame: "
-            "primary %.0f shadow %.0f bounce %.0f bounce-shadow %.0f total %.0f -> "
-            "%.2f Mrays/s\n",
+            "primary %.0f shadow %.0f bounce %.0f bounce-shadow %.0f last-brdf %.0f total %.0f "
+            "-> %.2f Mrays/s\n",
             scene.c_str(), pt.variant().c_str(), frames, ms / frames, double(kinds[0]) / frames,
             double(kinds[1]) / frames, double(kinds[2]) / frames, double(kinds[3]) / frames,
-            double(total) / frames, double(total) / (ms * 1e3));
+            double(kinds[4]) / frames, double(total) / frames, double(total) / (ms * 1e3));
         EXPECT_GT(total, 0u);
     }
 }
