@@ -88,7 +88,7 @@ void validateBuffer(const GltfJson& gltf, const GltfDocument& doc, size_t index)
         return;
     }
     if (!doc.allowExternalUris && uriLeavesFolder(decoded)) {
-        buffer.issueAt("uri", kExternalUriMessage);
+        buffer.issueAt("uri", externalUriMessage(*uri));
         return;
     }
     std::filesystem::path file = doc.baseDir / decoded;
