@@ -59,8 +59,11 @@ struct BenchResult {
     std::vector<BenchPass> passes;
 };
 
-// bench.json, bench.csv, bench.md; `header` holds the run's description (device, scene, ...).
-void writeBenchTables(const std::filesystem::path& dir, const nlohmann::json& header,
+class OutputFolder;
+
+// bench.csv, bench.md, then bench.json (everything, with "finished": true) last, each written
+// checked and atomically through `folder`; `header` holds the run's description (device, ...).
+void writeBenchTables(const OutputFolder& folder, const nlohmann::json& header,
                       const std::vector<BenchResult>& results);
 // The run-time-vs-error plot as SVG text (BenchPlot.cpp).
 std::string benchPlotSvg(const std::vector<BenchResult>& results, const std::string& title);

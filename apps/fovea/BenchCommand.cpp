@@ -9,6 +9,7 @@
 #include "apps/fovea/CliChecks.h"
 #include "apps/fovea/Commands.h"
 #include "apps/fovea/GraphRunner.h"
+#include "apps/fovea/OutputFolder.h"
 #include "apps/fovea/Progress.h"
 #include "apps/fovea/ReferenceErrors.h"
 #include "core/util/Error.h"
@@ -69,8 +70,9 @@ uint64_t referenceSeed(uint64_t seed) {
 // The reference of the measured frames: the bench's file, or rendered once into DIR/reference
 // (one image for a still camera, one per measured frame along a camera path) and reused while its
 // settings (key.json) are unchanged.
-fs::path prepareReference(const BenchSpec& spec, const fs::path& dir, gpu::Context& ctx, bool quiet,
-                          json& info) {
+fs::path prepareReference(const BenchSpec& spec, const OutputFolder& folder, gpu::Context& ctx,
+                          bool quiet, json& info) {
+    const fs::path& dir = folder.path();
     const BenchReference& ref = spec.reference;
     info = {{"source", ref.render ? "render" : "file"}};
     if (!ref.render) {
@@ -106,9 +108,12 @@ fs::path prepareReference(const BenchSpec& spec, const fs::path& dir, gpu::Conte
             spec.file + ": /reference/render/output", quiet);
         char name[32];
         std::snprintf(name, sizeof name, "frame%04u.exr", f);
-        image::writeExr(moving ? refDir / name : result, img);
+        folder.write(
+            moving ? "reference/" + std::string(name) : std::string("reference/reference.exr"),
+            [&](const fs::path& path) { image::writeExr(path, img); });
     }
-    std::ofstream(refDir / "key.json") << key.dump(2) << "\n";
+    // Written last and checked: a reference interrupted halfway is never taken as cached.
+    folder.writeText("reference/key.json", key.dump(2) + "\n");
     info["cached"] = false;
     return result;
 }
@@ -181,11 +186,13 @@ int benchCommand(const BenchOptions& o) {
                               spec.height);
         fileReference->requireFrames(spec.warmup, spec.frames - 1);
     }
+    // Taken like `fovea run`'s folder (OutputFolder.h): locked, emptiness re-checked under the
+    // lock, every file written checked under a temporary name, bench.json last with "finished".
+    const OutputFolder folder(dir, "--out", o.overwrite, "bench.json");
     std::optional<gpu::Context> device;
     gpu::Context& ctx = openDevice(device, o.device, o.validation, o.quiet);
-    fs::create_directories(dir);
     json referenceInfo;
-    const fs::path refPath = prepareReference(spec, dir, ctx, o.quiet, referenceInfo);
+    const fs::path refPath = prepareReference(spec, folder, ctx, o.quiet, referenceInfo);
     ReferenceSource reference = fileReference ? std::move(*fileReference)
                                               : ReferenceSource(refPath, spec.file + ": /reference",
                                                                 spec.width, spec.height);
@@ -214,11 +221,19 @@ int benchCommand(const BenchOptions& o) {
         {"warmup", spec.warmup},
         {"seed", spec.seed},
         {"reference", referenceInfo}};
-    writeBenchTables(dir, header, results);
-    std::ofstream(dir / "bench.svg") << benchPlotSvg(results, spec.name + " — " + ctx.deviceName());
+    folder.writeText("bench.svg", benchPlotSvg(results, spec.name + " — " + ctx.deviceName()));
     std::string why;
-    if (!rasterizeSvg(dir / "bench.svg", dir / "bench.png", why) && !o.quiet)
-        std::cerr << "fovea: bench.png not written: " << why << "\n";
+    bool rasterized = true;
+    try {
+        folder.write("bench.png", [&](const fs::path& path) {
+            rasterized = rasterizeSvg(dir / "bench.svg", path, why);
+            if (!rasterized) throw RuntimeError(why);  // removes the temporary file
+        });
+    } catch (const RuntimeError&) {
+        if (rasterized) throw;  // the rename failed: a write error like any other
+        if (!o.quiet) std::cerr << "fovea: bench.png not written: " << why << "\n";
+    }
+    writeBenchTables(folder, header, results);
     if (!o.quiet) std::cerr << "fovea: wrote " << (dir / "bench.md").string() << "\n";
     return kExitOk;
 }

@@ -2,9 +2,10 @@
 // bench.md (the summary and the per-pass breakdown), docs/bench.md.
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 
 #include "apps/fovea/Bench.h"
+#include "apps/fovea/OutputFolder.h"
 
 namespace fovea::app {
 
@@ -70,14 +71,9 @@ std::vector<double> bandRmse(const BenchResult& r) {
 
 }  // namespace
 
-void writeBenchTables(const fs::path& dir, const json& header,
+void writeBenchTables(const OutputFolder& folder, const json& header,
                       const std::vector<BenchResult>& results) {
-    json all = header;
-    all["graphs"] = json::array();
-    for (const auto& r : results) all["graphs"].push_back(resultJson(r));
-    std::ofstream(dir / "bench.json") << all.dump(2) << "\n";
-
-    std::ofstream c(dir / "bench.csv");
+    std::ostringstream c;
     c << "label,file,output,frame_ms_median,frame_ms_mean,speedup,rmse_percent,rmse,rel_mse,"
          "psnr_db,ssim,temporal_error,rmse_0_5deg,rmse_5_20deg,rmse_20deg_plus\n";
     for (const auto& r : results) {
@@ -91,8 +87,9 @@ void writeBenchTables(const fs::path& dir, const json& header,
         for (double v : bandRmse(r)) c << "," << number(v, "%.6g");
         c << "\n";
     }
+    folder.writeText("bench.csv", c.str());
 
-    std::ofstream t(dir / "bench.md");
+    std::ostringstream t;
     const json& size = header["size"];
     t << "# " << header["name"].get<std::string>() << "\n\n"
       << "Device: " << header["device"]["name"].get<std::string>() << " ("
@@ -131,6 +128,14 @@ void writeBenchTables(const fs::path& dir, const json& header,
               << number(p.gpuMs.median, "%.3f") << " | " << p.executions << " | " << p.status
               << " |\n";
     t << "\n![run time against error](bench.svg)\n";
+    folder.writeText("bench.md", t.str());
+
+    // Written last: its presence and "finished" say that the folder is complete (as report.json).
+    json all = header;
+    all["graphs"] = json::array();
+    for (const auto& r : results) all["graphs"].push_back(resultJson(r));
+    all["finished"] = true;
+    folder.writeText("bench.json", all.dump(2) + "\n");
 }
 
 }  // namespace fovea::app
