@@ -62,7 +62,8 @@ void pruneMeshes(Json& root, const GltfUsage& usage) {
             Json& attributes = prim["attributes"];
             for (auto it = attributes.begin(); it != attributes.end();) {
                 const std::string& key = it.key();
-                it = (key == "POSITION" || key == "NORMAL" || key == "TEXCOORD_0")
+                it = (key == "POSITION" || key == "NORMAL" || key == "TEXCOORD_0" ||
+                      key == "COLOR_0")
                          ? std::next(it)
                          : attributes.erase(it);
             }
