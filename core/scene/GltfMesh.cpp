@@ -123,31 +123,24 @@ void appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t prim
             }
         }
     }
-    // COLOR_0 (§3.7.2.1) multiplies the base colour; RGB gets alpha 1. Float colours outside
-    // [0, 1] (the spec's range) are clamped with a warning; NaN is an error like other attributes.
+    // COLOR_0 (§3.7.2.1) multiplies the base colour; RGB gets alpha 1. Float values must lie in
+    // [0, 1] (the validator's ACCESSOR_NON_CLAMPED is an error too): outside, or NaN, is an error.
     std::vector<glm::vec4> colors;
     if (int a = attribute(prim, "COLOR_0"); a >= 0) {
         const uint32_t components =
             model.accessors.at(size_t(a)).type == TINYGLTF_TYPE_VEC3 ? 3u : 4u;
         const std::vector<float> rawColors = readAccessorFloats(model, size_t(a), components, file);
         colors.resize(rawColors.size() / components, glm::vec4(1.0f));
-        size_t clamped = 0;
         for (size_t i = 0; i < rawColors.size(); ++i) {
-            float v = rawColors[i];
-            if (std::isnan(v)) {
-                throw InputError(
-                    file, "/accessors/" + std::to_string(a),
-                    "COLOR_0 of vertex " + std::to_string(i / components) + " is not a number");
-            }
-            if (v < 0.0f || v > 1.0f) {
-                v = std::clamp(v, 0.0f, 1.0f);
-                ++clamped;
+            const float v = rawColors[i];
+            if (!(v >= 0.0f && v <= 1.0f)) {
+                char value[32];
+                std::snprintf(value, sizeof value, "%g", double(v));
+                throw InputError(file, "/accessors/" + std::to_string(a),
+                                 "COLOR_0 of vertex " + std::to_string(i / components) + " is " +
+                                     value + ", outside [0, 1] (" + pointer + ")");
             }
             colors[i / components][int(i % components)] = v;
-        }
-        if (clamped) {
-            warnings.insert(pointer + ": " + std::to_string(clamped) +
-                            " COLOR_0 components outside [0, 1] clamped");
         }
     }
     if ((!rawNormals.empty() && rawNormals.size() != raw.size()) ||

@@ -77,8 +77,11 @@ SceneSurface sceneSurface(uint triangle, vec2 barycentrics) {
            vec2(c.positionU.w, c.normalV.w) * w.z;
     s.material = tri.material;
 #if SCENE_HAS_VERTEX_COLORS
-    s.color = sceneVertexColor(tri.indices.x) * w.x + sceneVertexColor(tri.indices.y) * w.y +
-              sceneVertexColor(tri.indices.z) * w.z;
+    // Written as ca + (cb - ca) b.x + (cc - ca) b.y: a constant colour (e.g. white) comes out
+    // exactly, so scenes whose COLOR_0 is all 1 render bit for bit as without it.
+    vec4 ca = sceneVertexColor(tri.indices.x);
+    s.color = ca + (sceneVertexColor(tri.indices.y) - ca) * barycentrics.x +
+              (sceneVertexColor(tri.indices.z) - ca) * barycentrics.y;
 #else
     s.color = vec4(1.0);
 #endif

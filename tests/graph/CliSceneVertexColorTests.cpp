@@ -127,13 +127,14 @@ TEST(SceneVertexColors, LoaderReadsEveryAllowedFormat) {
     ASSERT_EQ(s.mesh.colors.size(), s.mesh.positions.size());
     EXPECT_EQ(s.mesh.colors[3], glm::vec4(1.0f, 0.0f, 0.2f, 1.0f));
 
-    // Float colours outside [0, 1] are clamped with a warning naming the primitive.
-    scene::Scene over = load(floatRgb(2.0f, 0.5f, -1.0f));
-    EXPECT_EQ(over.mesh.colors[0], glm::vec4(1.0f, 0.5f, 0.0f, 1.0f));
-    bool warned = false;
-    for (const auto& w : over.warnings)
-        warned = warned || (contains(w, "/meshes/0/primitives/0") && contains(w, "COLOR_0"));
-    EXPECT_TRUE(warned);
+    // Float colours outside [0, 1] (the spec's range) are an error naming the accessor.
+    try {
+        load(floatRgb(0.5f, 2.0f, 0.5f));
+        ADD_FAILURE() << "loaded a COLOR_0 of 2";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.pointer(), "/accessors/2") << e.what();
+        EXPECT_TRUE(contains(e.what(), "outside [0, 1]")) << e.what();
+    }
 
     // Formats the spec does not allow for COLOR_0 are errors naming the attribute.
     for (const Colors& bad :
