@@ -84,7 +84,7 @@ struct SceneEmitter {
     float pdf;        // selection probability of this light (power / total power)
 };
 
-// Explicit bindings 16-25: the compiler's automatic numbering only numbers resources a shader
+// Explicit bindings 16-25 and 27 (26 is camera.glsl's CameraInfo): the compiler's automatic numbering only numbers resources a shader
 // uses, and leaves unused ones (a pass that never samples textures still declares
 // scene_texels) at binding 0, where they would collide. glslang reserves explicit slots first, so
 // a pass's own auto-numbered resources flow around this range.
@@ -151,7 +151,7 @@ layout(std430, binding = 25) readonly buffer SceneEmitters {
 #if SCENE_HAS_VERTEX_COLORS
 // glTF COLOR_0 per vertex (in scene_vertices order): packUnorm2x16(rg), packUnorm2x16(ba).
 // Empty (one 16-byte dummy) when the mesh has no colours.
-layout(std430, binding = 26) readonly buffer SceneVertexColors {
+layout(std430, binding = 27) readonly buffer SceneVertexColors {
     uvec2 colors[];
 } scene_vertex_colors;
 #endif
