@@ -197,7 +197,7 @@ void appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t prim
     // Colours stay empty until a primitive has some; then every vertex gets one (white before).
     if (!colors.empty() && out.colors.empty())
         out.colors.assign(out.positions.size(), glm::vec4(1.0f));
-    const bool withColors = !out.colors.empty();
+    const bool withColors = !colors.empty() || !out.colors.empty();
     auto colorAt = [&](size_t i) { return colors.empty() ? glm::vec4(1.0f) : colors[i]; };
 
     if (rawNormals.empty()) {
