@@ -366,4 +366,3 @@ TEST(CliRunRobustness, AllBlackOutputIsWarned) {
     ASSERT_EQ(framed.code, 0) << framed.describe();
     EXPECT_FALSE(contains(framed.err, "black in every pixel")) << framed.describe();
 }
-
