@@ -85,10 +85,13 @@ struct BenchResult {
     std::vector<BenchPass> passes;
 };
 
-// bench.json, bench.csv, bench.md; `header` holds the run's description (device, scene, ...),
-// with "noise_floor" ({"reference": FrameErrors::json() of the second reference against the
+class OutputFolder;
+
+// bench.csv, bench.md, then bench.json (everything, with "finished": true) last, each written
+// checked and atomically through `folder`; `header` holds the run's description (device, scene,
+// ...), with "noise_floor" ({"reference": FrameErrors::json() of the second reference against the
 // first, "<label>": the same per also_against}) and "layers" ({"r0", "r1", "unit"}) when known.
-void writeBenchTables(const std::filesystem::path& dir, const nlohmann::json& header,
+void writeBenchTables(const OutputFolder& folder, const nlohmann::json& header,
                       const std::vector<BenchResult>& results);
 // The run-time-vs-error plot as SVG text (BenchPlot.cpp).
 std::string benchPlotSvg(const std::vector<BenchResult>& results, const std::string& title);

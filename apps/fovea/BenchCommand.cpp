@@ -9,6 +9,7 @@
 #include "apps/fovea/CliChecks.h"
 #include "apps/fovea/Commands.h"
 #include "apps/fovea/GraphRunner.h"
+#include "apps/fovea/OutputFolder.h"
 #include "apps/fovea/Progress.h"
 #include "apps/fovea/ReferenceErrors.h"
 #include "core/util/Error.h"
@@ -73,8 +74,9 @@ uint64_t noiseFloorSeed(uint64_t seed) {
 // The reference of the measured frames: the bench's file, or rendered once into DIR/reference
 // (one image for a still camera, one per measured frame along a camera path) and reused while its
 // settings (key.json) are unchanged.
-fs::path prepareReference(const BenchSpec& spec, const fs::path& dir, const std::string& folder,
+fs::path prepareReference(const BenchSpec& spec, const OutputFolder& out, const std::string& folder,
                           uint64_t seed, gpu::Context& ctx, bool quiet, json& info) {
+    const fs::path& dir = out.path();
     const BenchReference& ref = spec.reference;
     info = {{"source", ref.render ? "render" : "file"}};
     if (!ref.render) {
@@ -111,9 +113,11 @@ fs::path prepareReference(const BenchSpec& spec, const fs::path& dir, const std:
                                  spec.file + ": /reference/render/output", quiet);
         char name[32];
         std::snprintf(name, sizeof name, "frame%04u.exr", f);
-        image::writeExr(moving ? refDir / name : result, img);
+        out.write(folder + "/" + (moving ? std::string(name) : std::string("reference.exr")),
+                  [&](const fs::path& path) { image::writeExr(path, img); });
     }
-    std::ofstream(refDir / "key.json") << key.dump(2) << "\n";
+    // Written last and checked: a reference interrupted halfway is never taken as cached.
+    out.writeText(folder + "/key.json", key.dump(2) + "\n");
     info["cached"] = false;
     return result;
 }
@@ -238,11 +242,13 @@ int benchCommand(const BenchOptions& o) {
             m.second.emplace(source(a.noiseFloor, a.pointer + "/noise_floor"));
         against.push_back(std::move(m));
     }
+    // Taken like `fovea run`'s folder (OutputFolder.h): locked, emptiness re-checked under the
+    // lock, every file written checked under a temporary name, bench.json last with "finished".
+    const OutputFolder folder(dir, "--out", o.overwrite, "bench.json");
     std::optional<gpu::Context> device;
     gpu::Context& ctx = openDevice(device, o.device, o.validation, o.quiet);
-    fs::create_directories(dir);
     json referenceInfo, floorInfo;
-    const fs::path refPath = prepareReference(spec, dir, "reference", referenceSeed(spec.seed), ctx,
+    const fs::path refPath = prepareReference(spec, folder, "reference", referenceSeed(spec.seed), ctx,
                                               o.quiet, referenceInfo);
     std::vector<MeasuredReference> references;
     references.push_back(
@@ -253,7 +259,7 @@ int benchCommand(const BenchOptions& o) {
     referenceInfo["mode"] = references[0].source.perFrame() ? "per-frame" : "single";
     if (spec.noiseFloorRender) {
         const fs::path floorPath = prepareReference(
-            spec, dir, "reference_noise_floor", noiseFloorSeed(spec.seed), ctx, o.quiet, floorInfo);
+            spec, folder, "reference_noise_floor", noiseFloorSeed(spec.seed), ctx, o.quiet, floorInfo);
         references[0].second.emplace(source(floorPath.string(), "/noise_floor"));
     } else if (fileFloor) {
         references[0].second = std::move(fileFloor);
@@ -306,11 +312,19 @@ int benchCommand(const BenchOptions& o) {
             header["also_against"].push_back(
                 {{"label", a.label}, {"path", a.file}, {"noise_floor", a.noiseFloor}});
     }
-    writeBenchTables(dir, header, results);
-    std::ofstream(dir / "bench.svg") << benchPlotSvg(results, spec.name + " — " + ctx.deviceName());
+    folder.writeText("bench.svg", benchPlotSvg(results, spec.name + " — " + ctx.deviceName()));
     std::string why;
-    if (!rasterizeSvg(dir / "bench.svg", dir / "bench.png", why) && !o.quiet)
-        std::cerr << "fovea: bench.png not written: " << why << "\n";
+    bool rasterized = true;
+    try {
+        folder.write("bench.png", [&](const fs::path& path) {
+            rasterized = rasterizeSvg(dir / "bench.svg", path, why);
+            if (!rasterized) throw RuntimeError(why);  // removes the temporary file
+        });
+    } catch (const RuntimeError&) {
+        if (rasterized) throw;  // the rename failed: a write error like any other
+        if (!o.quiet) std::cerr << "fovea: bench.png not written: " << why << "\n";
+    }
+    writeBenchTables(folder, header, results);
     if (!o.quiet) std::cerr << "fovea: wrote " << (dir / "bench.md").string() << "\n";
     return kExitOk;
 }

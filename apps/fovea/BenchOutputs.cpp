@@ -2,9 +2,10 @@
 // bench.md (the summary and the per-pass breakdown), docs/bench.md.
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 
 #include "apps/fovea/Bench.h"
+#include "apps/fovea/OutputFolder.h"
 #include "core/image/ImageMetrics.h"
 
 namespace fovea::app {
@@ -163,14 +164,9 @@ void floorNote(std::ostream& t, const json& header, const std::string& label) {
 
 }  // namespace
 
-void writeBenchTables(const fs::path& dir, const json& header,
+void writeBenchTables(const OutputFolder& folder, const json& header,
                       const std::vector<BenchResult>& results) {
-    json all = header;
-    all["graphs"] = json::array();
-    for (const auto& r : results) all["graphs"].push_back(resultJson(r));
-    std::ofstream(dir / "bench.json") << all.dump(2) << "\n";
-
-    std::ofstream c(dir / "bench.csv");
+    std::ostringstream c;
     const json* floor = floorOf(header, "reference");
     c << "label,file,output,frame_ms_median,frame_ms_mean,speedup,rmse_percent,rmse,rel_mse,"
          "psnr_db,ssim,temporal_error,rmse_0_5deg,rmse_5_20deg,rmse_20deg_plus,"
@@ -199,8 +195,9 @@ void writeBenchTables(const fs::path& dir, const json& header,
               << number(worstOf(a.errors).second, "%.6g");
         c << "\n";
     }
+    folder.writeText("bench.csv", c.str());
 
-    std::ofstream t(dir / "bench.md");
+    std::ostringstream t;
     const json& size = header["size"];
     t << "# " << header["name"].get<std::string>() << "\n\n"
       << "Device: " << header["device"]["name"].get<std::string>() << " ("
@@ -258,6 +255,14 @@ void writeBenchTables(const fs::path& dir, const json& header,
               << number(p.gpuMs.median, "%.3f") << " | " << p.executions << " | " << p.status
               << " |\n";
     t << "\n![run time against error](bench.svg)\n";
+    folder.writeText("bench.md", t.str());
+
+    // Written last: its presence and "finished" say that the folder is complete (as report.json).
+    json all = header;
+    all["graphs"] = json::array();
+    for (const auto& r : results) all["graphs"].push_back(resultJson(r));
+    all["finished"] = true;
+    folder.writeText("bench.json", all.dump(2) + "\n");
 }
 
 }  // namespace fovea::app

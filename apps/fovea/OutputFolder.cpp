@@ -24,7 +24,8 @@ bool emptyButLock(const fs::path& dir) {
 
 }  // namespace
 
-OutputFolder::OutputFolder(fs::path dir, const std::string& option, bool overwrite)
+OutputFolder::OutputFolder(fs::path dir, const std::string& option, bool overwrite,
+                           const std::string& report)
     : mDir(std::move(dir)) {
     std::error_code ec;
     fs::create_directories(mDir, ec);
@@ -55,9 +56,9 @@ OutputFolder::OutputFolder(fs::path dir, const std::string& option, bool overwri
                              "' is not empty; pass --overwrite to replace its files");
     }
     // A previous run's report would otherwise say "complete" about a half-written new run.
-    fs::remove(mDir / "report.json", ec);
+    fs::remove(mDir / report, ec);
     if (ec)
-        throw RuntimeError((mDir / "report.json").string() +
+        throw RuntimeError((mDir / report).string() +
                            ": cannot remove the previous report: " + ec.message());
 }
 
@@ -71,7 +72,7 @@ OutputFolder::~OutputFolder() {
 void OutputFolder::write(const std::string& name,
                          const std::function<void(const fs::path&)>& writeFile) const {
     const fs::path final = mDir / name;
-    const fs::path partial = mDir / (".partial." + name);
+    const fs::path partial = final.parent_path() / (".partial." + final.filename().string());
     std::error_code ec;
     try {
         writeFile(partial);

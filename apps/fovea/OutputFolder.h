@@ -4,11 +4,11 @@
 // - Taking it: the folder is created and `.fovea.lock` in it is locked (flock, released by the
 //   kernel when the process dies, so a crash leaves no stale lock). The emptiness rule of
 //   checkOutputDir is checked again under the lock: two runs started together on one --out
-//   cannot both pass it. With --overwrite, a previous report.json is removed first, so the old
-//   report never sits beside new images.
+//   cannot both pass it. With --overwrite, a previous report (report.json of `run`, bench.json
+//   of `bench`) is removed first, so the old report never sits beside new images.
 // - Writing: every file goes to `.partial.<name>` (same folder, same extension, so OpenImageIO
 //   picks the format) and is renamed when complete; every write is checked (a full disk is a
-//   RuntimeError naming the file, exit 1). report.json is written last.
+//   RuntimeError naming the file, exit 1). The report is written last, with "finished".
 #pragma once
 #include <filesystem>
 #include <functional>
@@ -18,14 +18,17 @@ namespace fovea::app {
 
 class OutputFolder {
 public:
-    // `option` names the flag in errors (InputError: exit 2).
-    OutputFolder(std::filesystem::path dir, const std::string& option, bool overwrite);
+    // `option` names the flag in errors (InputError: exit 2); `report` is the file that says the
+    // folder is complete (removed first with `overwrite`).
+    OutputFolder(std::filesystem::path dir, const std::string& option, bool overwrite,
+                 const std::string& report = "report.json");
     ~OutputFolder();
     OutputFolder(const OutputFolder&) = delete;
     OutputFolder& operator=(const OutputFolder&) = delete;
 
     const std::filesystem::path& path() const { return mDir; }
-    // Calls write(temporary path), then renames the temporary file to `name`. A throw from
+    // Calls write(temporary path), then renames the temporary file to `name` (a relative path in
+    // the folder: "reference/key.json" goes through "reference/.partial.key.json"). A throw from
     // `write` or a failed rename removes the temporary file and rethrows (RuntimeError).
     void write(const std::string& name,
                const std::function<void(const std::filesystem::path&)>& write) const;

@@ -2,6 +2,7 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -18,6 +19,7 @@
 #include "apps/fovea/ReferenceErrors.h"
 #include "apps/fovea/Report.h"
 #include "core/image/ImageIO.h"
+#include "core/scene/ViewProbe.h"
 #include "core/util/Error.h"
 #include "core/vk/Context.h"
 #include "core/vk/Formats.h"
@@ -141,6 +143,44 @@ void checkOutputDir(const fs::path& dir, const std::string& option, bool overwri
             option, "",
             "directory '" + dir.string() + "' is not empty; pass --overwrite to replace its files");
 }
+
+namespace {
+
+// report.json "primary_rays" and its warnings: a CPU trace of 32x32 primary rays through the
+// last frame's camera (core/scene/ViewProbe.h), between frames, so the GPU-timed frames do not
+// pay for it. Catches a camera that sees no geometry or sits inside it, whatever the graph.
+void addViewProbe(nlohmann::json& report, const RunScene& runScene,
+                  const scene::FrameCamera& camera, uint32_t frame) {
+    const std::optional<scene::ViewProbe> probe = runScene.probeView(camera);
+    if (!probe) return;
+    report["primary_rays"] = {{"frame", frame},
+                              {"probe_rays", probe->rays},
+                              {"hit_fraction", probe->hitFraction()},
+                              {"inside_fraction", probe->insideFraction()},
+                              {"back_face_hits", probe->backFaces},
+                              {"near_hits", probe->near}};
+    auto warn = [&](const std::string& warning) {
+        report["warnings"].push_back(warning);
+        std::cerr << "fovea: warning: " << warning << "\n";
+    };
+    char percent[32];
+    if (probe->hitFraction() < 0.01) {
+        std::snprintf(percent, sizeof percent, "%.1f%%", 100.0 * probe->hitFraction());
+        warn(std::string("primary rays hit geometry in ") + percent + " of the image (" +
+             std::to_string(probe->hits) + " of " + std::to_string(probe->rays) +
+             " probe rays, frame " + std::to_string(frame) +
+             "): the camera sees no geometry (--camera frame frames the scene)");
+    }
+    if (probe->looksInside()) {
+        std::snprintf(percent, sizeof percent, "%.0f%%", 100.0 * probe->insideFraction());
+        warn(std::string("the camera looks inside geometry: ") + percent +
+             " of the primary rays first hit the back of a single-sided surface or a surface "
+             "closer than 0.1% of the scene's size (frame " +
+             std::to_string(frame) + "; --camera frame frames the scene)");
+    }
+}
+
+}  // namespace
 
 int runCommand(const RunOptions& o) {
     graph::GraphDesc desc = loadGraph(o.graph);
@@ -266,6 +306,7 @@ int runCommand(const RunOptions& o) {
         json["warnings"].push_back(warning);
         std::cerr << "fovea: warning: " << warning << "\n";
     }
+    if (framesDone > 0) addViewProbe(json, scene, runner.graph().camera(), framesDone - 1);
     json["finished"] = framesDone == frames;
     json["frames_run"] = framesDone;
     folder.writeText("report.json", json.dump(2) + "\n");

@@ -6,8 +6,10 @@
 
 #include "apps/fovea/CliChecks.h"
 #include "core/graph/Pass.h"
+#include "core/scene/LightTable.h"
 #include "core/scene/SceneGpu.h"
 #include "core/scene/SceneLoader.h"
+#include "core/scene/ViewProbe.h"
 #include "core/util/Error.h"
 
 namespace fovea::app {
@@ -191,8 +193,15 @@ uint32_t RunScene::features() const {
 void RunScene::upload(gpu::Context& context) {
     if (!mScene) return;
     auto t0 = std::chrono::steady_clock::now();
-    mGpu = std::make_unique<scene::SceneGpu>(context, *mScene);
+    mBvh = std::make_unique<scene::Bvh>(mScene->mesh);
+    const scene::LightTable lights(*mScene, mBvh->triangleOrder());
+    mGpu = std::make_unique<scene::SceneGpu>(context, *mScene, *mBvh, lights);
     mUploadMs = msSince(t0);
+}
+
+std::optional<scene::ViewProbe> RunScene::probeView(const scene::FrameCamera& camera) const {
+    if (!mScene || !mBvh) return std::nullopt;
+    return scene::probeView(*mScene, *mBvh, camera);
 }
 
 scene::FrameCamera RunScene::frameCamera(uint64_t frame, uint32_t width, uint32_t height) {

@@ -17,8 +17,10 @@ namespace fovea::gpu {
 class Context;
 }
 namespace fovea::scene {
+class Bvh;
 class SceneGpu;
-}
+struct ViewProbe;
+}  // namespace fovea::scene
 
 namespace fovea::app {
 
@@ -66,6 +68,10 @@ public:
     // Uploads geometry, BVH and lights (timed; see json()).
     void upload(gpu::Context& context);
     const scene::SceneGpu* gpu() const { return mGpu.get(); }
+    // A coarse CPU trace of primary rays through `camera` (core/scene/ViewProbe.h): what share
+    // hits geometry and whether the camera looks inside it. Empty without a scene or before
+    // upload (the BVH built for the GPU is kept on the CPU for this).
+    std::optional<scene::ViewProbe> probeView(const scene::FrameCamera& camera) const;
 
     // The camera of frame `frame` for an image of width x height (the whole side-by-side image
     // when stereo); remembers it as the "previous" camera of the next call.
@@ -80,6 +86,7 @@ private:
     std::string mCameraSource;  // "path:<file>", "gltf:<n>", "default"
     std::unique_ptr<scene::Scene> mScene;
     std::unique_ptr<scene::SceneGpu> mGpu;
+    std::unique_ptr<scene::Bvh> mBvh;  // the uploaded BVH, for probeView
     std::optional<scene::CameraPath> mPath;
     scene::CameraRigOptions mRig;
     std::array<glm::vec2, scene::kMaxEyes> mGaze{glm::vec2(0.5f), glm::vec2(0.5f)};

@@ -1,5 +1,7 @@
 #include "core/graph/GraphContexts.h"
 
+#include <filesystem>
+
 #include "core/graph/RenderGraph.h"
 #include "core/scene/SceneGpu.h"
 #include "core/util/DidYouMean.h"
@@ -59,6 +61,13 @@ std::unique_ptr<gpu::ComputePipeline> GraphCompileContext::createPipeline(
 
 const scene::SceneGpu* GraphCompileContext::scene() const {
     return mGraph.scene();
+}
+
+std::string GraphCompileContext::resolvePath(const std::string& path) const {
+    const std::filesystem::path value(path);
+    if (path.empty() || value.is_absolute()) return path;
+    // A label of a graph not read from a file ("(editor)") has no folder: relative to the cwd.
+    return (std::filesystem::path(mPlan.file).parent_path() / value).lexically_normal().string();
 }
 
 gpu::Context& GraphExecuteContext::gpu() {

@@ -20,6 +20,7 @@ public:
         const std::vector<std::pair<std::string, std::string>>& defines,
         const std::vector<std::string>& extraResources) override;
     const scene::SceneGpu* scene() const override;
+    std::string resolvePath(const std::string& path) const override;
 
 private:
     RenderGraph& mGraph;

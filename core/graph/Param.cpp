@@ -1,6 +1,7 @@
 #include "core/graph/Param.h"
 
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <set>
 #include <sstream>
@@ -198,6 +199,7 @@ private:
         if (std::isfinite(s.range.min)) p["min"] = s.range.min;
         if (std::isfinite(s.range.max)) p["max"] = s.range.max;
         if (!s.choices.empty()) p["choices"] = s.choices;
+        if (s.path) p["path"] = true;
         result.push_back(p);
     }
 };
@@ -234,15 +236,21 @@ nlohmann::json describeParams(Pass& pass) {
 nlohmann::json parseParamText(Pass& pass, const std::string& param, const std::string& text,
                               const std::string& flag) {
     std::string type;
+    bool path = false;
     std::vector<std::string> names;
     for (const auto& p : describeParams(pass)) {
         names.push_back(p["name"]);
-        if (p["name"] == param) type = p["type"];
+        if (p["name"] == param) {
+            type = p["type"];
+            path = p.contains("path");
+        }
     }
     if (type.empty())
         throw InputError(flag, "",
                          "pass '" + pass.name() + "' (" + pass.type() + ") has no parameter '" +
                              param + "'" + didYouMean(param, names));
+    if (type == "string" && path && !text.empty() && std::filesystem::path(text).is_relative())
+        return (std::filesystem::current_path() / text).lexically_normal().string();
     if (type == "string") return text;
     // Numbers, booleans and vectors are written as JSON ("2", "true", "[1,0,0]"); a parse
     // failure is reported against the flag, and the type check happens in loadParams.

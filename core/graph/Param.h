@@ -21,6 +21,9 @@ struct ParamSpec {
     std::string doc;
     ParamRange range;
     std::vector<std::string> choices;  // for string parameters: the allowed values (empty = any)
+    // A file path: relative values from a graph file are resolved against the graph file's folder
+    // (CompileContext::resolvePath); relative values from `--set` against the working directory.
+    bool path = false;
 };
 
 class ParamVisitor {
@@ -50,6 +53,11 @@ public:
              const std::string& doc, std::vector<std::string> choices = {}) {
         visit(ParamSpec{name, doc, {}, std::move(choices)}, value, def);
     }
+    // A file-path string parameter (see ParamSpec::path).
+    void addPath(const std::string& name, std::string& value, const std::string& def,
+                 const std::string& doc) {
+        visit(ParamSpec{name, doc, {}, {}, true}, value, def);
+    }
     void add(const std::string& name, glm::vec3& value, const glm::vec3& def,
              const std::string& doc, ParamRange range = {}) {
         visit(ParamSpec{name, doc, range, {}}, value, def);
@@ -73,7 +81,9 @@ nlohmann::json saveParams(Pass& pass, bool onlyChanged);
 nlohmann::json describeParams(Pass& pass);
 
 // Converts the text of a `--set pass.param=value` to JSON of the parameter's declared type
-// (so `--set tm.exposure=2` is a number and `--set src.pattern=noise` a string).
+// (so `--set tm.exposure=2` is a number and `--set src.pattern=noise` a string). A relative
+// path parameter (ParamSpec::path) is made absolute from the working directory: the user typed
+// it there, while the graph file's own paths are relative to its folder.
 nlohmann::json parseParamText(Pass& pass, const std::string& param, const std::string& text,
                               const std::string& flag);
 

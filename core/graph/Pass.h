@@ -71,6 +71,10 @@ public:
     // The scene on the GPU, or null when the run has none (then no pass needing geometry is
     // alive). Its defines() specialize shaders for the scene's features.
     virtual const scene::SceneGpu* scene() const = 0;
+    // A path parameter's value (ParamSpec::path) as a file to open: a relative path is resolved
+    // against the graph file's folder, like defaults.camera, so a graph works from any working
+    // directory. Absolute paths, and graphs not read from a file, are returned unchanged.
+    virtual std::string resolvePath(const std::string& path) const = 0;
     virtual std::unique_ptr<gpu::ComputePipeline> createPipeline(
         const std::string& shaderPath,
         const std::vector<std::pair<std::string, std::string>>& defines = {},

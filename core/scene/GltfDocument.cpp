@@ -189,4 +189,10 @@ bool uriLeavesFolder(const std::string& decoded) {
     return !normal.empty() && *normal.begin() == "..";
 }
 
+std::string externalUriMessage(const std::string& uri) {
+    return "'" + truncateForMessage(uri, 120) +
+           "' refers to a file outside the scene's folder; not read (pass --allow-external-uris "
+           "to allow it)";
+}
+
 }  // namespace fovea::scene::gltf

@@ -28,10 +28,9 @@ struct GltfDocument {
 // True when a percent-decoded relative URI names a file outside the folder it is resolved in:
 // an absolute path, a root name, or ".." climbing above it ("../../../../etc/shadow").
 bool uriLeavesFolder(const std::string& decoded);
-// The message for such a URI (no size or content of the file is echoed: it is never opened).
-inline constexpr const char* kExternalUriMessage =
-    "refers to a file outside the scene's folder; not read (pass --allow-external-uris to allow "
-    "it)";
+// The message for such a URI: names the URI as written (shortened), but no size or content of
+// the file is echoed: it is never opened.
+std::string externalUriMessage(const std::string& uri);
 
 // Throws InputError(file, "", ...) for unreadable files, broken GLB containers and bad JSON.
 GltfDocument readGltfDocument(const std::filesystem::path& path);

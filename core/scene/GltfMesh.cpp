@@ -123,8 +123,29 @@ void appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t prim
             }
         }
     }
+    // COLOR_0 (§3.7.2.1) multiplies the base colour; RGB gets alpha 1. Float values must lie in
+    // [0, 1] (the validator's ACCESSOR_NON_CLAMPED is an error too): outside, or NaN, is an error.
+    std::vector<glm::vec4> colors;
+    if (int a = attribute(prim, "COLOR_0"); a >= 0) {
+        const uint32_t components =
+            model.accessors.at(size_t(a)).type == TINYGLTF_TYPE_VEC3 ? 3u : 4u;
+        const std::vector<float> rawColors = readAccessorFloats(model, size_t(a), components, file);
+        colors.resize(rawColors.size() / components, glm::vec4(1.0f));
+        for (size_t i = 0; i < rawColors.size(); ++i) {
+            const float v = rawColors[i];
+            if (!(v >= 0.0f && v <= 1.0f)) {
+                char value[32];
+                std::snprintf(value, sizeof value, "%g", double(v));
+                throw InputError(file, "/accessors/" + std::to_string(a),
+                                 "COLOR_0 of vertex " + std::to_string(i / components) + " is " +
+                                     value + ", outside [0, 1] (" + pointer + ")");
+            }
+            colors[i / components][int(i % components)] = v;
+        }
+    }
     if ((!rawNormals.empty() && rawNormals.size() != raw.size()) ||
-        (!rawUvs.empty() && rawUvs.size() / 2 != vertexCount)) {
+        (!rawUvs.empty() && rawUvs.size() / 2 != vertexCount) ||
+        (!colors.empty() && colors.size() != vertexCount)) {
         throw InputError(file, pointer + "/attributes", "attribute counts differ");
     }
     std::vector<uint32_t> indices = readIndices(model, indexAccessor, vertexCount, file, pointer);
@@ -173,6 +194,11 @@ void appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t prim
     }
     out.triangles.reserve(out.triangles.size() + triangles);
     out.materialIds.insert(out.materialIds.end(), triangles, materialId);
+    // Colours stay empty until a primitive has some; then every vertex gets one (white before).
+    if (!colors.empty() && out.colors.empty())
+        out.colors.assign(out.positions.size(), glm::vec4(1.0f));
+    const bool withColors = !colors.empty() || !out.colors.empty();
+    auto colorAt = [&](size_t i) { return colors.empty() ? glm::vec4(1.0f) : colors[i]; };
 
     if (rawNormals.empty()) {
         // Flat normals need a vertex per corner: corners of different faces differ in normal.
@@ -185,6 +211,7 @@ void appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t prim
                 out.positions.push_back(positions[v]);
                 out.normals.push_back(n);
                 out.uvs.push_back(uvAt(v));
+                if (withColors) out.colors.push_back(colorAt(v));
             }
             out.triangles.emplace_back(first, first + 1, first + 2);
         }
@@ -203,6 +230,7 @@ void appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t prim
         out.positions.push_back(positions[i]);
         out.normals.push_back(normals[i]);
         out.uvs.push_back(uvAt(i));
+        if (withColors) out.colors.push_back(colorAt(i));
     }
     for (size_t t = 0; t < triangles; ++t) {
         uint32_t a = indices[3 * t], b = indices[3 * t + 1], c = indices[3 * t + 2];

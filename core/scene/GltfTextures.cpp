@@ -60,7 +60,7 @@ bool rawBufferBytes(const GltfDocument& doc, uint64_t index, std::vector<uint8_t
         return false;
     }
     if (!doc.allowExternalUris && uriLeavesFolder(decoded)) {
-        error = kExternalUriMessage;
+        error = externalUriMessage(*uri);
         return false;
     }
     return readRegularFile(doc.baseDir / decoded, kMaxGltfFileBytes, out, error);
@@ -87,7 +87,7 @@ bool encodedImage(const GltfDocument& doc, const tinygltf::Model* model, size_t 
             return false;
         }
         if (!doc.allowExternalUris && uriLeavesFolder(decoded)) {
-            error = kExternalUriMessage;
+            error = externalUriMessage(*uri);
             return false;
         }
         std::filesystem::path path = doc.baseDir / decoded;

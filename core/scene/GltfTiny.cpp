@@ -1,5 +1,6 @@
 #include "core/scene/GltfTiny.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstring>
 
@@ -61,11 +62,53 @@ void pruneMeshes(Json& root, const GltfUsage& usage) {
             Json& attributes = prim["attributes"];
             for (auto it = attributes.begin(); it != attributes.end();) {
                 const std::string& key = it.key();
-                it = (key == "POSITION" || key == "NORMAL" || key == "TEXCOORD_0")
+                it = (key == "POSITION" || key == "NORMAL" || key == "TEXCOORD_0" ||
+                      key == "COLOR_0")
                          ? std::next(it)
                          : attributes.erase(it);
             }
         }
+    }
+}
+
+// `path` percent-encoded so that tinygltf's decoder (which also turns '+' into a space) gives it
+// back byte for byte: every byte outside [A-Za-z0-9/._-] becomes %XX.
+std::string encodeForTinygltf(const std::string& path) {
+    static const char* kHex = "0123456789ABCDEF";
+    std::string out;
+    for (unsigned char c : path) {
+        if (std::isalnum(c) || c == '/' || c == '.' || c == '_' || c == '-') {
+            out += char(c);
+        } else {
+            out += '%';
+            out += kHex[c >> 4];
+            out += kHex[c & 15];
+        }
+    }
+    return out;
+}
+
+// tinygltf joins every buffer URI to its base folder as text ("/scene" + "/" + "/abs/x.bin"), so
+// an absolute URI allowed by --allow-external-uris was never found. Every used file URI is handed
+// over as an absolute path instead (validated and decoded by fovea) with an empty base folder.
+void absoluteBufferUris(Json& root, const GltfDocument& doc, const GltfUsage& usage) {
+    auto buffers = root.find("buffers");
+    if (buffers == root.end() || !buffers->is_array()) return;
+    std::error_code ec;
+    std::filesystem::path base = std::filesystem::absolute(doc.baseDir, ec);
+    if (ec) base = doc.baseDir;
+    for (size_t b = 0; b < buffers->size() && b < usage.buffers.size(); ++b) {
+        if (!usage.buffers[b] || !(*buffers)[b].is_object()) continue;
+        auto uri = (*buffers)[b].find("uri");
+        if (uri == (*buffers)[b].end() || !uri->is_string()) continue;
+        const std::string& text = uri->get_ref<const std::string&>();
+        std::string decoded;
+        if (text.rfind("data:", 0) == 0 || !percentDecode(text, decoded)) continue;
+        if (!doc.allowExternalUris && uriLeavesFolder(decoded)) {  // validation refused it first
+            throw InputError(doc.file, "/buffers/" + std::to_string(b) + "/uri",
+                             externalUriMessage(text));
+        }
+        *uri = encodeForTinygltf((base / decoded).lexically_normal().string());
     }
 }
 
@@ -95,6 +138,7 @@ Json prunedJson(const GltfDocument& doc, const GltfUsage& usage) {
         }
     }
     pruneMeshes(root, usage);
+    absoluteBufferUris(root, doc, usage);
     // fovea reads and decodes images itself (GltfTextures.cpp); tinygltf only keeps the count.
     if (auto images = root.find("images"); images != root.end() && images->is_array()) {
         for (Json& image : *images) image = Json{{"uri", ""}};
@@ -172,7 +216,7 @@ tinygltf::Model loadTinyGltf(const GltfDocument& doc, const GltfUsage& usage) {
     tinygltf::Model model;
     std::string err, warn;
     bool ok = false;
-    std::string base = doc.baseDir.string();
+    const std::string base;  // every used file URI is absolute (absoluteBufferUris)
     try {
         if (doc.isGlb) {
             std::vector<unsigned char> glb = buildGlb(json, doc.glbBin ? &*doc.glbBin : nullptr);

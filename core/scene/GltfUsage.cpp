@@ -238,6 +238,7 @@ void useMesh(const GltfJson& gltf, uint64_t mesh, GltfUsage& usage, std::vector<
         mark(usage.accessors, attributes.uint("POSITION"));
         mark(usage.accessors, attributes.uint("NORMAL"));
         mark(usage.accessors, attributes.uint("TEXCOORD_0"));
+        mark(usage.accessors, attributes.uint("COLOR_0"));
         mark(usage.accessors, prim.uint("indices"));
         mark(usage.materials, prim.uint("material"));
         if (warn && prim.array("targets").size() > 0) {

@@ -165,7 +165,7 @@ void validateReferences(const GltfJson& gltf) {
         for (size_t p = 0; p < primitives.size(); ++p) {
             JsonView prim = primitives.element(p);
             JsonView attributes = prim.object("attributes");
-            for (const char* semantic : {"POSITION", "NORMAL", "TEXCOORD_0"}) {
+            for (const char* semantic : {"POSITION", "NORMAL", "TEXCOORD_0", "COLOR_0"}) {
                 checkRef(attributes, semantic, accessors, "accessors");
             }
             checkRef(prim, "indices", accessors, "accessors");

@@ -88,7 +88,7 @@ void validateBuffer(const GltfJson& gltf, const GltfDocument& doc, size_t index)
         return;
     }
     if (!doc.allowExternalUris && uriLeavesFolder(decoded)) {
-        buffer.issueAt("uri", kExternalUriMessage);
+        buffer.issueAt("uri", externalUriMessage(*uri));
         return;
     }
     std::filesystem::path file = doc.baseDir / decoded;
@@ -270,13 +270,18 @@ bool allowedFormat(const std::string& semantic, const std::string& type, uint64_
             (normalized && (componentType == kUnsignedByte || componentType == kUnsignedShort));
         return type == "VEC2" && (core || (quantized && small));
     }
+    if (semantic == "COLOR_0") {  // §3.7.2.1: float, or normalized unsigned byte/short
+        return (type == "VEC3" || type == "VEC4") &&
+               (isFloat || (normalized &&
+                            (componentType == kUnsignedByte || componentType == kUnsignedShort)));
+    }
     return true;
 }
 
 void validatePrimitive(const GltfJson& gltf, const JsonView& prim, bool quantized) {
     JsonView attributes = prim.silent().object("attributes");
     std::optional<uint64_t> vertexCount;
-    for (const char* semantic : {"POSITION", "NORMAL", "TEXCOORD_0"}) {
+    for (const char* semantic : {"POSITION", "NORMAL", "TEXCOORD_0", "COLOR_0"}) {
         std::optional<uint64_t> index = attributes.uint(semantic);
         if (!index || *index >= gltf.count("accessors")) continue;
         JsonView accessor = gltf.entity("accessors", *index).silent();

@@ -75,6 +75,10 @@ struct TriangleMesh {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;  // normalized; generated flat when the file has none
     std::vector<glm::vec2> uvs;      // (0,0) when the file has none
+    // glTF COLOR_0, linear RGBA in [0, 1] per vertex (glTF 2.0 §3.7.2.1: multiplies the base
+    // colour). Empty when no primitive has one; else one per position, (1,1,1,1) for vertices of
+    // primitives without COLOR_0.
+    std::vector<glm::vec4> colors;
     std::vector<glm::uvec3> triangles;
     std::vector<uint32_t> materialIds;
     size_t triangleCount() const { return triangles.size(); }

@@ -19,8 +19,20 @@ namespace {
 constexpr size_t kMinBufferBytes = 16;
 
 const std::vector<std::string> kResourceNames = {
-    "scene_info",      "scene_vertices", "scene_triangles", "scene_bvh",    "scene_bvh_triangles",
-    "scene_materials", "scene_textures", "scene_texels",    "scene_lights", "scene_emitters"};
+    "scene_info",          "scene_vertices",  "scene_triangles",    "scene_bvh",
+    "scene_bvh_triangles", "scene_materials", "scene_textures",     "scene_texels",
+    "scene_lights",        "scene_emitters",  "scene_vertex_colors"};
+
+// COLOR_0 as two packUnorm2x16 words (RG, BA): 8 bytes a vertex; 16-bit unorm holds every
+// normalized unsigned short exactly and floats to 1.5e-5 (colours are in [0, 1], glTF §3.7.2.1).
+glm::uvec2 packColor(const glm::vec4& c) {
+    auto unorm16 = [](float v) {
+        // NaN fails both comparisons and becomes 0; the loader already clamped to [0, 1].
+        const float clamped = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
+        return uint32_t(std::lround(clamped * 65535.0f));
+    };
+    return {unorm16(c.r) | unorm16(c.g) << 16, unorm16(c.b) | unorm16(c.a) << 16};
+}
 
 template <class T>
 size_t bytesOf(const std::vector<T>& v) {
@@ -134,6 +146,11 @@ void SceneGpu::upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
         const glm::vec2 uv = v < mesh.uvs.size() ? mesh.uvs[v] : glm::vec2(0.0f);
         vertices[v] = {glm::vec4(mesh.positions[v], uv.x), glm::vec4(n, uv.y)};
     }
+    // Vertex colours only when the mesh has them (else an empty binding, compiled out).
+    mVertexColors = !mesh.colors.empty();
+    std::vector<glm::uvec2> colors(mVertexColors ? vertices.size() : 0);
+    for (size_t v = 0; v < colors.size(); ++v)
+        colors[v] = packColor(v < mesh.colors.size() ? mesh.colors[v] : glm::vec4(1.0f));
     std::vector<layout::Triangle> triangles(order.size());
     std::vector<layout::TrianglePositions> positions(order.size());
     for (size_t i = 0; i < order.size(); ++i) {
@@ -191,6 +208,7 @@ void SceneGpu::upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
     mInfo.emitterCount = static_cast<uint32_t>(lights.entries().size());
     mInfo.emissiveTriangleCount = lights.emissiveTriangleCount();
     mInfo.invalidTriangles = bvh.stats().invalidTriangles;
+    mInfo.vertexColors = mVertexColors ? 1u : 0u;
     mInfo.totalPower = static_cast<float>(lights.totalPower());
     mInfo.emissivePower = static_cast<float>(lights.emissivePower());
     mInfo.punctualPower = static_cast<float>(lights.punctualPower());
@@ -218,6 +236,7 @@ void SceneGpu::upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
     addBuffer(context, "scene_texels", texels.data(), bytesOf(texels));
     addBuffer(context, "scene_lights", gpuLights.data(), bytesOf(gpuLights));
     addBuffer(context, "scene_emitters", lights.entries().data(), bytesOf(lights.entries()));
+    addBuffer(context, "scene_vertex_colors", colors.data(), bytesOf(colors));
 }
 
 void SceneGpu::bind(gpu::ComputePipeline& pipeline) const {
@@ -229,7 +248,8 @@ std::vector<std::pair<std::string, std::string>> SceneGpu::defines() const {
     auto flag = [&](uint32_t bit) { return std::string((mFeatures & bit) ? "1" : "0"); };
     return {{"SCENE_HAS_TEXTURES", flag(kSceneTextures)},
             {"SCENE_HAS_EMISSIVE", flag(kSceneEmissive)},
-            {"SCENE_HAS_PUNCTUAL", flag(kScenePunctual)}};
+            {"SCENE_HAS_PUNCTUAL", flag(kScenePunctual)},
+            {"SCENE_HAS_VERTEX_COLORS", mVertexColors ? "1" : "0"}};
 }
 
 const gpu::Buffer& SceneGpu::buffer(std::string_view name) const {

@@ -67,7 +67,8 @@ struct Light {  // scene_lights (punctual)
 struct Info {  // scene_info (uniform; std140 == std430 for this member order)
     uint32_t vertexCount, triangleCount, nodeCount, materialCount;
     uint32_t textureCount, texelCount, lightCount, emitterCount;
-    uint32_t emissiveTriangleCount, features, invalidTriangles, pad0;
+    uint32_t emissiveTriangleCount, features, invalidTriangles;
+    uint32_t vertexColors;  // 1: scene_vertex_colors holds one entry per vertex
     float totalPower, emissivePower, punctualPower, radius;  // radius of the bounding sphere
     glm::vec4 boundsMin;                                     // xyz; w unused
     glm::vec4 boundsMax;
@@ -109,6 +110,8 @@ public:
     uint32_t features() const { return mFeatures; }
     // SCENE_HAS_TEXTURES / SCENE_HAS_EMISSIVE / SCENE_HAS_PUNCTUAL = "0" or "1".
     std::vector<std::pair<std::string, std::string>> defines() const;
+    // The mesh has per-vertex colours (scene_vertex_colors, SCENE_HAS_VERTEX_COLORS).
+    bool hasVertexColors() const { return mVertexColors; }
 
     // Throws RuntimeError (with did-you-mean) for a name not in resourceNames().
     const gpu::Buffer& buffer(std::string_view name) const;
@@ -130,6 +133,7 @@ private:
     std::vector<std::pair<std::string, std::unique_ptr<gpu::Buffer>>> mBuffers;
     std::vector<uint32_t> mTriangleOrder;
     BvhStats mBvhStats;
+    bool mVertexColors = false;
     layout::Info mInfo{};
     uint32_t mFeatures = 0;
 };

@@ -43,9 +43,10 @@ std::string formatFramePattern(const std::string& pattern, uint64_t frame,
 }
 
 void ImageFilePass::params(graph::ParamVisitor& v) {
-    v.add("path", mPath, std::string(),
-          "EXR/PNG file, or a sequence with one printf-style frame number (frame%04d.exr: frame "
-          "= firstFrame + frame index); relative to the working directory");
+    v.addPath("path", mPath, std::string(),
+              "EXR/PNG file, or a sequence with one printf-style frame number (frame%04d.exr: "
+              "frame = firstFrame + frame index); relative to the graph file's folder (from "
+              "--set: to the working directory)");
     v.add("firstFrame", mFirstFrame, 0, "number of the file read in the run's first frame",
           {0, 2147483647});
     v.add("channels", mChannels, std::string(),
@@ -62,7 +63,7 @@ void ImageFilePass::reflect(graph::Reflection& r) const {
 
 std::string ImageFilePass::fileFor(uint64_t frame) const {
     const std::string what = "pass '" + name() + "' (ImageFile) path";
-    return formatFramePattern(mPath, uint64_t(mFirstFrame) + frame, what);
+    return formatFramePattern(mResolvedPath, uint64_t(mFirstFrame) + frame, what);
 }
 
 std::vector<float> ImageFilePass::readChecked(const std::string& file, uint32_t width,
@@ -83,6 +84,7 @@ std::vector<float> ImageFilePass::readChecked(const std::string& file, uint32_t 
 void ImageFilePass::compile(graph::CompileContext& ctx) {
     if (mPath.empty())
         throw InputError("pass '" + name() + "' (ImageFile)", "", "parameter 'path' is empty");
+    mResolvedPath = ctx.resolvePath(mPath);
     const auto& size = ctx.renderSize();
     // The first frame's file is read now: a missing or wrong-size file fails before any frame.
     readChecked(fileFor(0), size.width, size.height);

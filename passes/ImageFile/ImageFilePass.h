@@ -29,6 +29,7 @@ private:
     std::vector<float> readChecked(const std::string& file, uint32_t width, uint32_t height) const;
 
     std::string mPath;
+    std::string mResolvedPath;  // mPath resolved against the graph file's folder (compile)
     int mFirstFrame = 0;
     std::string mChannels;
     std::unique_ptr<gpu::Buffer> mStaging;  // host-visible, width * height * 16 bytes

@@ -4,8 +4,9 @@
 // followed by a 4-byte scalar shares one 16-byte slot in std430, exactly like glm::vec3 + float.
 //
 // Compile with SceneGpu::defines(): SCENE_HAS_TEXTURES / SCENE_HAS_EMISSIVE / SCENE_HAS_PUNCTUAL
-// = 0 drop the buffers and code paths a scene does not need. Without defines everything is on,
-// which is valid for any scene (empty buffers are still bound).
+// / SCENE_HAS_VERTEX_COLORS = 0 drop the buffers and code paths a scene does not need. Without
+// defines everything is on, which is valid for any scene (empty buffers are still bound; an
+// empty scene_vertex_colors reads as white, see sceneVertexColor).
 #ifndef FOVEA_SCENE_DATA_GLSL
 #define FOVEA_SCENE_DATA_GLSL
 
@@ -17,6 +18,9 @@
 #endif
 #ifndef SCENE_HAS_PUNCTUAL
 #define SCENE_HAS_PUNCTUAL 1
+#endif
+#ifndef SCENE_HAS_VERTEX_COLORS
+#define SCENE_HAS_VERTEX_COLORS 1
 #endif
 
 const uint kBvhInternalNode = 0xFFFFFFFFu;  // BvhNode.count of an internal node
@@ -80,7 +84,7 @@ struct SceneEmitter {
     float pdf;        // selection probability of this light (power / total power)
 };
 
-// Explicit bindings 16-25: the compiler's automatic numbering only numbers resources a shader
+// Explicit bindings 16-25 and 27 (26 is camera.glsl's CameraInfo): the compiler's automatic numbering only numbers resources a shader
 // uses, and leaves unused ones (a pass that never samples textures still declares
 // scene_texels) at binding 0, where they would collide. glslang reserves explicit slots first, so
 // a pass's own auto-numbered resources flow around this range.
@@ -96,7 +100,7 @@ layout(std140, binding = 16) uniform SceneInfo {
     uint emissiveTriangleCount;
     uint features;
     uint invalidTriangles;
-    uint pad0;
+    uint vertexColors;  // 1: scene_vertex_colors holds one entry per vertex
     float totalPower;
     float emissivePower;
     float punctualPower;
@@ -142,6 +146,14 @@ layout(std430, binding = 24) readonly buffer SceneLights {
 layout(std430, binding = 25) readonly buffer SceneEmitters {
     SceneEmitter emitters[];
 } scene_emitters;
+#endif
+
+#if SCENE_HAS_VERTEX_COLORS
+// glTF COLOR_0 per vertex (in scene_vertices order): packUnorm2x16(rg), packUnorm2x16(ba).
+// Empty (one 16-byte dummy) when the mesh has no colours.
+layout(std430, binding = 27) readonly buffer SceneVertexColors {
+    uvec2 colors[];
+} scene_vertex_colors;
 #endif
 
 #endif

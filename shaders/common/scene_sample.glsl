@@ -22,7 +22,8 @@ struct SceneSurface {
                            // not flipped towards the ray: compare with geometricNormal
     vec2 uv;
     uint material;
-    float area;  // of the triangle
+    float area;   // of the triangle
+    vec4 color;   // glTF COLOR_0, interpolated (1 without vertex colours)
 };
 
 struct SceneMaterialSample {
@@ -42,6 +43,16 @@ struct SceneLightSample {
     bool isDelta;    // punctual light: no MIS, BSDF rays never hit it
     uint light;      // the SceneEmitter.light value that was picked
 };
+
+#if SCENE_HAS_VERTEX_COLORS
+// White without colours: a shader compiled without defines (everything on) may run on a scene
+// whose scene_vertex_colors is a 16-byte dummy.
+vec4 sceneVertexColor(uint vertex) {
+    if (scene_info.vertexColors == 0u || vertex >= scene_info.vertexCount) return vec4(1.0);
+    uvec2 p = scene_vertex_colors.colors[vertex];
+    return vec4(unpackUnorm2x16(p.x), unpackUnorm2x16(p.y));
+}
+#endif
 
 // Vertex 0 gets 1 - b.x - b.y.
 SceneSurface sceneSurface(uint triangle, vec2 barycentrics) {
@@ -65,6 +76,15 @@ SceneSurface sceneSurface(uint triangle, vec2 barycentrics) {
     s.uv = vec2(a.positionU.w, a.normalV.w) * w.x + vec2(b.positionU.w, b.normalV.w) * w.y +
            vec2(c.positionU.w, c.normalV.w) * w.z;
     s.material = tri.material;
+#if SCENE_HAS_VERTEX_COLORS
+    // Written as ca + (cb - ca) b.x + (cc - ca) b.y: a constant colour (e.g. white) comes out
+    // exactly, so scenes whose COLOR_0 is all 1 render bit for bit as without it.
+    vec4 ca = sceneVertexColor(tri.indices.x);
+    s.color = ca + (sceneVertexColor(tri.indices.y) - ca) * barycentrics.x +
+              (sceneVertexColor(tri.indices.z) - ca) * barycentrics.y;
+#else
+    s.color = vec4(1.0);
+#endif
     return s;
 }
 
@@ -123,6 +143,16 @@ SceneMaterialSample sceneMaterial(uint material, vec2 uv) {
     s.emissive = vec3(0.0);  // nothing in the scene emits
 #endif
     return s;
+}
+
+// The material at a surface: sceneMaterial with the base colour (and alpha) multiplied by the
+// interpolated vertex colour, as glTF 2.0 §3.9.2 defines baseColor = factor * texture * COLOR_0.
+// What every pass that shades or writes albedo calls (GBuffer, PathTrace).
+SceneMaterialSample sceneSurfaceMaterial(SceneSurface s) {
+    SceneMaterialSample m = sceneMaterial(s.material, s.uv);
+    m.baseColor *= s.color.rgb;
+    m.alpha *= s.color.a;
+    return m;
 }
 
 // Radiance leaving a surface of this material; back faces emit only when double-sided.

@@ -101,7 +101,7 @@ void main() {
     // Shading normal flipped with the face the ray sees (not per pixel against the view vector:
     // interpolated normals may legitimately tilt away at silhouettes).
     vec3 n = frontFacing ? s.normal : -s.normal;
-    SceneMaterialSample m = sceneMaterial(s.material, s.uv);
+    SceneMaterialSample m = sceneSurfaceMaterial(s);
 
     // A camera that did not move gives exactly zero (not a rounding residue of the two camera
     // representations), so temporal passes can rely on "no motion" for a still view.

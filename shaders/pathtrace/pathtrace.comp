@@ -140,7 +140,7 @@ struct Vertex {
 
 Vertex makeVertex(uint triangle, vec2 bary, vec3 rayDir) {
     SceneSurface s = sceneSurface(triangle, bary);
-    SceneMaterialSample m = sceneMaterial(s.material, s.uv);
+    SceneMaterialSample m = sceneSurfaceMaterial(s);
     bool front = dot(s.geometricNormal, rayDir) < 0.0;
     Vertex v;
     v.position = s.position;

@@ -75,18 +75,59 @@ TEST(CliImageFile, ReadsASequenceExactlyAndSelectsChannels) {
     }
 }
 
-TEST(CliImageFile, ShippedDenoiseGraphRunsOnAFoveaSequence) {
+// Runs `cli(args)` with `dir` as the working directory (restored afterwards).
+static Result cliIn(const fs::path& dir, const std::vector<std::string>& args) {
+    const fs::path before = fs::current_path();
+    fs::current_path(dir);
+    Result r = cli(args);
+    fs::current_path(before);
+    return r;
+}
+
+// The README's two commands in a scratch folder laid out like the repository (graphs/ holds a copy
+// of the shipped graph): a relative ImageFile path is resolved against the graph file's folder, so
+// the graph runs from the root and from any other working directory; a relative --set path is
+// resolved against the working directory. Before, ImageFile read relative paths from the working
+// directory and the shipped graph only worked from the repository root.
+TEST(CliImageFile, ShippedDenoiseGraphRunsFromAnyWorkingDirectory) {
     TempDir tmp;
-    const fs::path seq = writeSequence(tmp);
-    Result r = cli({"run", kDenoiseGraph.string(), "--out", (tmp / "d").string(), "--size", "32x32",
-                    "--frames", "2", "--set",
-                    "src.path=" + (seq / "pt.radiance.frame%04d.exr").string(), "--quiet"});
-    ASSERT_EQ(r.code, 0) << r.describe();
-    const std::vector<float> noisy = pixels(seq / "pt.radiance.frame0001.exr");
-    const std::vector<float> denoised = pixels(tmp / "d" / "denoise.denoised.frame0001.exr");
+    fs::create_directories(tmp / "graphs");
+    fs::create_directories(tmp / "elsewhere");
+    fs::copy_file(kDenoiseGraph, tmp / "graphs" / "denoise_exr_sequence.json");
+    Result seq =
+        cliIn(tmp.path(), {"run", kPathTraceGraph.string(), "--out", "out/pathtrace_seq", "--size",
+                           "32x32", "--frames", "2", "--save-frames", "all", "--quiet"});
+    ASSERT_EQ(seq.code, 0) << seq.describe();
+    const fs::path graph = tmp / "graphs" / "denoise_exr_sequence.json";
+    const std::vector<std::string> common = {"--size", "32x32", "--frames", "2", "--quiet"};
+    auto run = [&](const fs::path& cwd, const std::string& graphArg, const std::string& out,
+                   std::vector<std::string> extra) {
+        std::vector<std::string> args = {"run", graphArg, "--out", (tmp / out).string()};
+        args.insert(args.end(), common.begin(), common.end());
+        args.insert(args.end(), extra.begin(), extra.end());
+        return cliIn(cwd, args);
+    };
+    Result fromRoot = run(tmp.path(), "graphs/denoise_exr_sequence.json", "d1", {});
+    ASSERT_EQ(fromRoot.code, 0) << fromRoot.describe();
+    Result fromElsewhere = run(tmp / "elsewhere", graph.string(), "d2", {});
+    ASSERT_EQ(fromElsewhere.code, 0) << fromElsewhere.describe();
+    Result setFromCwd = run(tmp.path(), graph.string(), "d3",
+                            {"--set", "src.path=out/pathtrace_seq/pt.radiance.frame%04d.exr"});
+    ASSERT_EQ(setFromCwd.code, 0) << setFromCwd.describe();
+    // A --set path relative to another working directory does not exist there: the error names
+    // the file as resolved from that directory.
+    expectInputError(run(tmp / "elsewhere", graph.string(), "d4",
+                         {"--set", "src.path=out/pathtrace_seq/pt.radiance.frame%04d.exr"}),
+                     {(tmp / "elsewhere" / "out" / "pathtrace_seq").string()});
+
+    const std::vector<float> noisy =
+        pixels(tmp / "out" / "pathtrace_seq" / "pt.radiance.frame0001.exr");
+    const std::vector<float> denoised = pixels(tmp / "d1" / "denoise.denoised.frame0001.exr");
     ASSERT_EQ(noisy.size(), denoised.size());
     EXPECT_NE(noisy, denoised) << "ATrousNH changed nothing";
-    EXPECT_TRUE(fs::exists(tmp / "d" / "tm.ldr.frame0001.png"));
+    EXPECT_EQ(denoised, pixels(tmp / "d2" / "denoise.denoised.frame0001.exr"));
+    EXPECT_EQ(denoised, pixels(tmp / "d3" / "denoise.denoised.frame0001.exr"));
+    EXPECT_TRUE(fs::exists(tmp / "d1" / "tm.ldr.frame0001.png"));
 }
 
 TEST(CliImageFile, BadFilesAreInputErrorsNamingTheFile) {

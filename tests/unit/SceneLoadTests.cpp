@@ -223,7 +223,7 @@ bool harmless(const ValidatorMessage& m) {
         "MESH_PRIMITIVE_JOINTS_WEIGHTS_MISMATCH", "MESH_PRIMITIVES_UNEQUAL_TARGETS_COUNT",
         "NODE_SKIN_WITH_NON_SKINNED_MESH", "NODE_WEIGHTS_INVALID", "MESH_INVALID_WEIGHTS_COUNT",
         "NODE_SKIN_NO_SCENE",
-        // attribute names: fovea looks up POSITION, NORMAL and TEXCOORD_0 only.
+        // attribute names: fovea looks up POSITION, NORMAL, TEXCOORD_0 and COLOR_0 only.
         "MESH_PRIMITIVE_INDEXED_SEMANTIC_CONTINUITY",
         // a texture on a missing texture set: fovea itself rejects a textured material on a
         // primitive without TEXCOORD_0, and ignores (with a warning) textures on other sets.
@@ -238,7 +238,8 @@ bool harmless(const ValidatorMessage& m) {
     size_t attributes = p.find("/attributes/");
     if (attributes != std::string::npos) {
         std::string semantic = p.substr(attributes + 12);
-        return semantic != "POSITION" && semantic != "NORMAL" && semantic != "TEXCOORD_0";
+        return semantic != "POSITION" && semantic != "NORMAL" && semantic != "TEXCOORD_0" &&
+               semantic != "COLOR_0";
     }
     return false;
 }
