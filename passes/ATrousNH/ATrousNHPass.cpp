@@ -15,6 +15,7 @@ namespace {
 const std::vector<std::string> kStepOrders = {"decreasing", "increasing"};
 const std::vector<std::string> kSchedules = {"levels", "layers"};
 const std::vector<std::string> kPositionUnits = {"scene", "depth"};
+const std::vector<std::string> kPositionTerms = {"plane", "distance"};
 constexpr int kMaxIterations = 16;
 // atrous_fill block: uvec4 fillArgs, uvec4 copyArgs, uint holes, uint executed (+ padding).
 constexpr vk::DeviceSize kFillStateBytes = 48;
@@ -67,6 +68,18 @@ void ATrousNHPass::params(graph::ParamVisitor& v) {
           "distance to its eye, so sigmaPosition is a fraction of the view distance and one "
           "value suits scenes of any scale (e.g. 0.05)",
           kPositionUnits);
+    v.add("positionTerm", mPositionTerm, "plane",
+          "geometry distance of the position weight: plane = |n_p . (x_q - x_p)|, the distance of "
+          "x_q to p's tangent plane (seed 004's plane distance; needs `normal`): taps far along "
+          "a flat surface keep their weight, so the large steps of the schedule still average; "
+          "distance = |x_q - x_p| (Dammertz 2010): a tap 2^i px away is rejected at large i "
+          "unless sigmaPosition is loose enough to blur across depth edges",
+          kPositionTerms);
+    v.add("sigmaTangent", mSigmaTangent, 0.0f,
+          "plane term only: weight exp(-|x_q - x_p|_along^2 / sigma^2) on the distance along p's "
+          "tangent plane, in positionUnit (bounds how far along a surface a tap may reach: a "
+          "lighting gradient over a wall is not flattened); 0 = unbounded",
+          {0.0, 1e30});
 }
 
 void ATrousNHPass::reflect(graph::Reflection& r) const {
@@ -100,6 +113,10 @@ void ATrousNHPass::compile(graph::CompileContext& ctx) {
     mUseMask = ctx.connected("mask");
     mUseNormal = ctx.connected("normal");
     mUsePosition = ctx.connected("position");
+    if (mUsePosition && !mUseNormal && mPositionTerm == "plane")
+        throw InputError("pass '" + name() + "' (ATrousNH)", "",
+                         "positionTerm 'plane' needs the normal input (the tangent plane is "
+                         "n_p's); connect `normal` or set positionTerm to 'distance'");
     // Not enforced: M < N < P is the paper's advice (§3.4), not a validity condition.
     mVariant =
         "layers=" + std::to_string(mLayers) + ",iterations=" + std::to_string(mIterations[0]);
@@ -107,7 +124,9 @@ void ATrousNHPass::compile(graph::CompileContext& ctx) {
     mVariant +=
         "," + mStepOrder + "," + mSchedule + (mFill ? ",fill" : "") + (mUseMask ? ",mask" : "") +
         (mUseNormal ? ",normal" : "") +
-        (mUsePosition ? ",position" + std::string(mPositionUnit == "depth" ? "/depth" : "") : "");
+        (mUsePosition ? ",position" + std::string(mPositionUnit == "depth" ? "/depth" : "") + "/" +
+                            mPositionTerm
+                      : "");
     mPipeline = ctx.createPipeline("atrous_nh/atrous_nh.comp", {}, {"atrous_fill"});
     mFillArgs = ctx.createPipeline("atrous_nh/fill_args.comp", {}, {"atrous_fill"});
     mFillState = std::make_unique<gpu::Buffer>(
@@ -142,7 +161,10 @@ void ATrousNHPass::execute(graph::ExecuteContext& ctx) {
         .set("invSigmaColor2", invSquare(mSigmaColor))
         .set("invSigmaNormal2", mUseNormal ? invSquare(mSigmaNormal) : 0.0f)
         .set("invSigmaPosition2", mUsePosition ? invSquare(mSigmaPosition) : 0.0f)
-        .set("positionRelative", int(mPositionUnit == "depth"));
+        .set("positionRelative", int(mPositionUnit == "depth"))
+        .set("positionPlane", int(mPositionTerm == "plane"))
+        .set("invSigmaTangent2",
+             mUsePosition && mPositionTerm == "plane" ? invSquare(mSigmaTangent) : 0.0f);
 
     // Main levels ping-pong between ping and pong and end in `denoised`; they run as plain
     // dispatches (their count is fixed by the parameters).

@@ -34,6 +34,8 @@ private:
     float mSigmaNormal = 0.2f;
     float mSigmaPosition = 0.5f;
     std::string mPositionUnit = "scene";
+    std::string mPositionTerm = "plane";
+    float mSigmaTangent = 0.0f;
     bool mUseMask = false, mUseNormal = false, mUsePosition = false;
     std::string mVariant;
     std::unique_ptr<gpu::ComputePipeline> mPipeline;

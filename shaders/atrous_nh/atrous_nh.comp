@@ -46,6 +46,8 @@ layout(push_constant) uniform Params {
     float invSigmaNormal2;
     float invSigmaPosition2;
     int positionRelative;  // 1: position distances in units of p's distance to its eye
+    int positionPlane;     // 1: tangent-plane distance |n_p . (x_q - x_p)|; 0: |x_q - x_p|
+    float invSigmaTangent2;  // plane term: 1 / sigmaTangent^2 on the distance along the plane
 } pc;
 
 // Mask word (FoveationMask): bit 0 sampled (B of Eq. 2), bits 1-2 layer id, bits 16-31 spp.
@@ -98,16 +100,20 @@ void main() {
     int x0 = eye * pc.eyeWidth;
     int x1 = eye == pc.eyes - 1 ? pc.size.x : x0 + pc.eyeWidth;
     vec3 np = texelFetch(normal, p, 0).xyz;
-    vec3 xp = texelFetch(position, p, 0).xyz;
+    vec4 xpFull = texelFetch(position, p, 0);
+    vec3 xp = xpFull.xyz;
+    float xpHit = xpFull.w;
     // The normal term shrinks with the step (Dammertz's reference code); stepWidth >= 1.
     float invN2 = pc.invSigmaNormal2 / float(pc.stepWidth * pc.stepWidth);
     float invX2 = pc.invSigmaPosition2;
+    float invT2 = pc.invSigmaTangent2;
     if (pc.positionRelative != 0) {
         // Scale-invariant position term: |x_p - x_q| / |x_p - eye|. The floor keeps the division
         // finite for a point at the eye (then every other position is far, weight ~0).
         uint cameraEye = min(uint(eye), max(cameraEyeCount(), 1u) - 1u);
         vec3 toEye = xp - camera_info.eyes[cameraEye].position.xyz;
         invX2 /= max(dot(toEye, toEye), 1e-30);
+        invT2 /= max(dot(toEye, toEye), 1e-30);
     }
 
     vec3 sum = vec3(0.0), plainSum = vec3(0.0);
@@ -130,8 +136,20 @@ void main() {
                 w *= edgeWeight(dot(d, d), invN2);
             }
             if (pc.invSigmaPosition2 > 0.0) {
-                vec3 d = xp - texelFetch(position, q, 0).xyz;
-                w *= edgeWeight(dot(d, d), invX2);
+                vec4 xq = texelFetch(position, q, 0);
+                vec3 d = xq.xyz - xp;
+                // Plane term (seed 004 "plane distance", ReBLUR's geometry weight): a tap on
+                // p's tangent plane has distance 0 however far along the surface it lies, so
+                // the large steps still average a flat wall; a tap in front of or behind the
+                // plane is rejected. Hit and miss never mix (w = 1 hit, GBuffer).
+                float d2 = dot(d, d);
+                if (pc.positionPlane != 0) {
+                    float t = dot(np, d);
+                    // Along the plane a separate, looser sigma bounds the reach (0 = unbounded).
+                    w *= edgeWeight(max(d2 - t * t, 0.0), invT2);
+                    d2 = xq.w == xpHit ? t * t : 1e30;
+                }
+                w *= edgeWeight(d2, invX2);
             }
             sum += s.rgb * (w * h);
             cum += w * h;

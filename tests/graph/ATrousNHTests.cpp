@@ -2,14 +2,17 @@
 // scalar CPU reference (tests/graph/ATrousReference) on random inputs and masks, mono 32x32 and
 // stereo 48x24; unsampled pixels never leak; no holes and no darkening with sparse masks; no tap
 // crosses the eye seam; one layer equals an independent classic à-trous; per-layer iteration
-// counts are respected. Inputs come from a no-op "Feed" pass whose persistent outputs the test
-// uploads before the frame.
+// counts are respected; with the Peres graphs' parameters every level up to the 5th lowers the
+// error on a noisy wall and NH2LD differs from NH3LD. Inputs come from a no-op "Feed" pass whose
+// persistent outputs the test uploads before the frame.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <set>
 #include <string>
@@ -221,9 +224,11 @@ TEST_F(ATrousNHTest, MatchesReferenceStereoPerLayerIncreasing) {
     auto got = run(in,
                    R"({ "layers": 3, "iterations0": 1, "iterations1": 2, "iterations2": 3,
                         "eyes": 2, "stepOrder": "increasing", "schedule": "layers",
-                        "sigmaColor": 0.7, "sigmaNormal": 0.5, "sigmaPosition": 0.3 })",
+                        "sigmaColor": 0.7, "sigmaNormal": 0.5, "sigmaPosition": 0.3,
+                        "positionTerm": "distance" })",
                    true, true, &normal);
     auto r = refInput(in, 2, 3, options(3, 1, 2, 3, false, true, true, 24), true, normal);
+    r.positionPlane = false;
     r.sigmaColor = 0.7f;
     r.sigmaNormal = 0.5f;
     r.sigmaPosition = 0.3f;
@@ -346,7 +351,9 @@ TEST_F(ATrousNHTest, OneLayerEqualsClassicATrous) {
     for (bool decreasing : {true, false}) {
         const std::string order = decreasing ? "decreasing" : "increasing";
         const std::string params =
-            R"({ "layers": 1, "iterations0": 4, "eyes": 1, "stepOrder": ")" + order + R"(" })";
+            R"({ "layers": 1, "iterations0": 4, "eyes": 1, "positionTerm": "distance",
+                 "stepOrder": ")" +
+            order + R"(" })";
         std::vector<float> normal;
         auto got = run(in, params, false, true, &normal);
         auto classic = classicATrous(in, normal, 4, decreasing, 1.0f, 0.2f, 0.5f);
@@ -442,4 +449,120 @@ TEST_F(ATrousNHTest, DepthRelativePositionUnitIsScaleInvariant) {
         "iterations2": 3, "eyes": 1, "sigmaPosition": 0.2, "sigmaColor": 0 })";
     EXPECT_TRUE(near(run(scaled, depth, true), run(in, depth, true), 1e-4f));
     EXPECT_FALSE(near(run(scaled, sceneUnits, true), run(in, sceneUnits, true), 1e-3f));
+}
+
+// --- levels that matter (issue 15 §2) -----------------------------------------------------------
+
+namespace {
+
+// A 64x64 wall facing the default camera (eye at the origin, looking down -z) 3 units away, 2
+// units wide: a smooth truth (a gentle ramp) plus seeded noise, every pixel sampled, the mask's
+// three concentric layers as in randomInputs.
+Inputs noisyWall(std::vector<float>& truth) {
+    constexpr int kSize = 64;
+    Inputs in = randomInputs(kSize, kSize, 1, 1.0f, 1.0f, 41);
+    std::mt19937 rng(42);
+    std::normal_distribution<float> noise(0.0f, 0.3f);
+    truth.assign(in.color.size(), 1.0f);
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            const size_t i = size_t(y) * kSize + x;
+            const float u = (x + 0.5f) / kSize - 0.5f, v = (y + 0.5f) / kSize - 0.5f;
+            const float base =
+                1.0f + 0.05f * u - 0.025f * v;  // steeper: the 16 px level's bias wins
+            for (int c = 0; c < 3; ++c) {
+                truth[i * 4 + c] = base * (c == 1 ? 0.8f : 1.0f);
+                in.color[i * 4 + c] = std::max(truth[i * 4 + c] + noise(rng), 0.0f);
+                in.normal[i * 4 + c] = c == 2 ? 1.0f : 0.0f;
+            }
+            in.position[i * 4 + 0] = 2.0f * u;
+            in.position[i * 4 + 1] = -2.0f * v;
+            in.position[i * 4 + 2] = -3.0f;
+        }
+    return in;
+}
+
+// The "dn" (ATrousNH) params of a shipped graph, mono.
+nlohmann::json denoiserParams(const std::string& graph) {
+    std::ifstream file(std::string(FOVEA_TEST_DIR) + "/../graphs/" + graph);
+    const auto root = nlohmann::json::parse(file);
+    for (const auto& pass : root.at("passes"))
+        if (pass.at("name") == "dn") {
+            nlohmann::json p = pass.value("params", nlohmann::json::object());
+            p["eyes"] = 1;
+            // The graphs bound the reach along a surface (sigmaTangent, tuned against the
+            // references: on Cornell a longer reach raised the error); unbounded here, so the test
+            // checks that the plane term with the graphs' other sigmas lets every level act.
+            p["sigmaTangent"] = 0;
+            return p;
+        }
+    ADD_FAILURE() << graph << " has no pass 'dn'";
+    return nlohmann::json::object();
+}
+
+double rmse(const std::vector<float>& a, const std::vector<float>& b) {
+    double sum = 0;
+    for (size_t i = 0; i < a.size(); ++i)
+        if (i % 4 != 3) sum += (double(a[i]) - b[i]) * (double(a[i]) - b[i]);
+    return std::sqrt(sum / double(a.size() / 4 * 3));
+}
+
+}  // namespace
+
+TEST_F(ATrousNHTest, EachLevelOfThePeresGraphsMattersAndNH2LDDiffersFromNH3LD) {
+    // With Base's parameters (graphs/peres_base.json, reach along the surface unbounded) 1..5
+    // iterations: each added level (the decreasing schedule adds the largest step, 2^(n-1) px)
+    // changes the output by more than 1 % of the noise and lowers the error against the smooth
+    // truth. Under the point-distance term the 16 px level is a no-op on such a wall (issue 15).
+    constexpr double kMinChange = 0.01 * 0.3;  // 1 % of the noise; a no-op level changes ~0
+    std::vector<float> truth;
+    const Inputs in = noisyWall(truth);
+    nlohmann::json base = denoiserParams("peres_base.json");
+    std::vector<float> previous = in.color;
+    double previousError = rmse(in.color, truth);
+    for (int n = 1; n <= 5; ++n) {
+        base["iterations0"] = n;
+        const auto out = run(in, base.dump(), false);
+        const double change = rmse(out, previous), error = rmse(out, truth);
+        std::printf("Base, %d levels: RMSE %.4f, change from %d levels %.4f\n", n, error, n - 1,
+                    change);
+        EXPECT_GT(change, kMinChange) << n << " levels";
+        EXPECT_LT(error, 0.97 * previousError) << n << " levels";
+        previous = out;
+        previousError = error;
+    }
+    nlohmann::json distance = base;
+    distance["positionTerm"] = "distance";
+    distance["iterations0"] = 4;
+    const auto four = run(in, distance.dump(), false);
+    distance["iterations0"] = 5;
+    EXPECT_LT(rmse(run(in, distance.dump(), false), four), kMinChange)
+        << "the point-distance term was expected to make the 16 px level a no-op";
+    // NH2LD (two layers: middle + outer merged, N levels) vs NH3LD (three: N' < P): the
+    // middle ring gets different level counts, so its outputs differ, and the one with more
+    // levels is closer to the truth there.
+    const auto nh2Params = denoiserParams("peres_nh2ld.json");
+    const auto nh3Params = denoiserParams("peres_nh3ld.json");
+    const int levels2 = nh2Params.value("iterations1", 0),
+              levels3 = nh3Params.value("iterations1", 0);
+    ASSERT_NE(levels2, levels3) << "NH2LD and NH3LD give the middle ring the same level count";
+    const auto nh2 = run(in, nh2Params.dump(), true);
+    const auto nh3 = run(in, nh3Params.dump(), true);
+    std::vector<float> middle2, middle3, middleTruth;
+    for (size_t i = 0; i < in.mask.size(); ++i)
+        if (((in.mask[i] >> 1) & 3u) == 1u)
+            for (int c = 0; c < 4; ++c) {
+                middle2.push_back(nh2[i * 4 + c]);
+                middle3.push_back(nh3[i * 4 + c]);
+                middleTruth.push_back(truth[i * 4 + c]);
+            }
+    ASSERT_FALSE(middle2.empty());
+    const double error2 = rmse(middle2, middleTruth), error3 = rmse(middle3, middleTruth);
+    std::printf("middle ring: NH2LD (%d levels) RMSE %.4f, NH3LD (%d) %.4f, difference %.4f\n",
+                levels2, error2, levels3, error3, rmse(middle2, middle3));
+    EXPECT_GT(rmse(middle2, middle3), kMinChange);
+    if (levels2 > levels3)
+        EXPECT_LT(error2, error3);
+    else
+        EXPECT_LT(error3, error2);
 }

@@ -22,6 +22,14 @@ float dist2(const float* a, const float* b) {
     for (int c = 0; c < 3; ++c) d += (a[c] - b[c]) * (a[c] - b[c]);
     return d;
 }
+
+// Squared distance of xq to the plane through xp with normal np (the shader's plane term).
+float planeDist2(const float* np, const float* xp, const float* xq) {
+    if (xp[3] != xq[3]) return 1e30f;  // hit next to miss
+    float t = 0.0f;
+    for (int c = 0; c < 3; ++c) t += np[c] * (xq[c] - xp[c]);
+    return t * t;
+}
 }  // namespace
 
 std::vector<float> atrousReference(const ATrousRefInput& in) {
@@ -33,6 +41,7 @@ std::vector<float> atrousReference(const ATrousRefInput& in) {
     const float invC = invSquare(in.sigmaColor);
     const float invN = in.normal.empty() ? 0.0f : invSquare(in.sigmaNormal);
     const float invX = in.position.empty() ? 0.0f : invSquare(in.sigmaPosition);
+    const float invT = in.position.empty() ? 0.0f : invSquare(in.sigmaTangent);
 
     // State: rgb + validity, initialised as the shader's loadState from the input.
     std::vector<float> state(n * 4, 0.0f);
@@ -77,8 +86,17 @@ std::vector<float> atrousReference(const ATrousRefInput& in) {
                         if (centreValid && invC > 0.0f) wt *= edgeWeight(dist2(centre, s), invC);
                         if (invN > 0.0f)
                             wt *= edgeWeight(dist2(&in.normal[i * 4], &in.normal[j * 4]), invN2);
-                        if (invX > 0.0f)
-                            wt *= edgeWeight(dist2(&in.position[i * 4], &in.position[j * 4]), invX);
+                        if (invX > 0.0f) {
+                            const float* xp = &in.position[i * 4];
+                            const float* xq = &in.position[j * 4];
+                            float d2 = dist2(xp, xq);
+                            if (in.positionPlane) {
+                                const float t2 = planeDist2(&in.normal[i * 4], xp, xq);
+                                wt *= edgeWeight(std::max(d2 - t2, 0.0f), invT);
+                                d2 = t2;
+                            }
+                            wt *= edgeWeight(d2, invX);
+                        }
                         for (int c = 0; c < 3; ++c) {
                             sum[c] += s[c] * (wt * hk);
                             plain[c] += s[c] * hk;

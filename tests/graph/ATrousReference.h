@@ -17,6 +17,11 @@ struct ATrousRefInput {
     std::vector<float> position;  // rgba per pixel; empty = no position weight
     std::vector<uint32_t> mask;   // FoveationMask words; empty = no mask
     float sigmaColor = 1.0f, sigmaNormal = 0.2f, sigmaPosition = 0.5f;  // 0 = term off
+    // positionTerm: true = plane |n_p . (x_q - x_p)| (needs `normal`; a hit/miss pair, position.w
+    // differing, has weight 0) times the sigmaTangent weight on the distance along the plane
+    // (0 = off), false = distance |x_q - x_p|. Scene units (positionUnit scene).
+    bool positionPlane = true;
+    float sigmaTangent = 0.0f;
     std::vector<passes::ATrousDispatch> schedule;
 };
 

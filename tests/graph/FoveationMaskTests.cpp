@@ -362,4 +362,63 @@ TEST_F(FoveationMaskTest, BadParametersAreClearErrors) {
     expectError(R"({ "radiusUnit": "degrees", "r0": 10, "r1": 200 })", "params.r1");
 }
 
+// Issue 15 §1: graphs/peres_nh2ld.json and peres_nh3ld.json follow seed 000 Table 1 (every pixel
+// of every layer traced, 4/3/2 spp: 58 % of Base's samples); the *_sparse graphs follow §3.2's
+// random sub-sampling. Each graph's own mask parameters at Table 1's size (FHD stereo, 960x1080
+// per eye; the graphs' radii are for their 960x540 default, so r0/r1 = 144/288 here): per eye and
+// layer, the pixels and samples the layout hands PathTrace against Table 1's Area and Samples.
+TEST_F(FoveationMaskTest, PeresGraphsTraceTable1sCounts) {
+    constexpr uint32_t kW = 1920, kH = 1080;
+    const double tableArea[3] = {65144, 195432, 776224};       // Table 1, FHD, per screen
+    const double tableSamples[3] = {260576, 586296, 1552448};  // Area x 4 / 3 / 2 spp
+    const double baseSamples = 4.0 * (kW / 2) * kH;            // Base: 4 spp everywhere
+    const std::string graphs = std::string(FOVEA_TEST_DIR) + "/../graphs/";
+    auto maskParams = [&](const std::string& file) {
+        for (const auto& pass : parseGraphFile(graphs + file).passes)
+            if (pass.type == "FoveationMask") return pass.params;
+        ADD_FAILURE() << file << " has no FoveationMask pass";
+        return nlohmann::json::object();
+    };
+    EXPECT_EQ(maskParams("peres_nh2ld.json"), maskParams("peres_nh3ld.json"));
+    EXPECT_EQ(maskParams("peres_nh2ld_sparse.json"), maskParams("peres_nh3ld_sparse.json"));
+    for (const bool table1 : {true, false}) {
+        const std::string file = table1 ? "peres_nh3ld.json" : "peres_nh3ld_sparse.json";
+        SCOPED_TRACE(file);
+        nlohmann::json params = maskParams(file);
+        params["r0"] = 144;
+        params["r1"] = 288;
+        auto g = makeGraph(kW, kH, maskGraph(params.dump()));
+        g->setCamera(camera(kW, kH, true));
+        g->runFrame();
+        const std::vector<uint32_t> m = mask(*g);
+        double area[2][3] = {}, traced[2][3] = {}, samples[2][3] = {};
+        for (size_t i = 0; i < m.size(); ++i) ++area[(i % kW) / (kW / 2)][(m[i] >> 1) & 3u];
+        for (const auto& e : layout(*g).entries) {
+            const glm::uvec2 px = sampling::unpackSamplePixel(e.pixel);
+            const uint32_t l = (m[size_t(px.y) * kW + px.x] >> 1) & 3u;
+            ++traced[px.x / (kW / 2)][l];
+            samples[px.x / (kW / 2)][l] += e.samples;
+        }
+        for (int eye = 0; eye < 2; ++eye) {
+            double total = 0;
+            for (int l = 0; l < 3; ++l) {
+                SCOPED_TRACE("eye " + std::to_string(eye) + " layer " + std::to_string(l));
+                EXPECT_NEAR(area[eye][l], tableArea[l], 0.01 * tableArea[l]);
+                if (table1) {
+                    EXPECT_EQ(traced[eye][l], area[eye][l]);
+                    EXPECT_EQ(samples[eye][l], area[eye][l] * double(4 - l));
+                    EXPECT_NEAR(samples[eye][l], tableSamples[l], 0.01 * tableSamples[l]);
+                }
+                total += samples[eye][l];
+            }
+            std::printf("%s eye %d: %.0f samples = %.1f %% of Base\n", file.c_str(), eye, total,
+                        100.0 * total / baseSamples);
+            if (table1)
+                EXPECT_NEAR(total / baseSamples, 0.579, 0.006);  // Table 1: 2,399,320 / 4,147,200
+            else
+                EXPECT_LT(total / baseSamples, 0.45);  // §3.2's sub-sampling traces fewer
+        }
+    }
+}
+
 }  // namespace
