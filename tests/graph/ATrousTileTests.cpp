@@ -182,7 +182,9 @@ TEST(ATrousTileSchedule, LevelKeysKeepEveryPixelCurrentInTheSourceImage) {
                                 if (main == 0) continue;
                                 // Level 0 and a hole-counting last level are full screen.
                                 EXPECT_EQ(keys[0], 0u) << what;
-                                if (anyFill) EXPECT_EQ(keys[main - 1], 0u) << what;
+                                if (anyFill) {
+                                    EXPECT_EQ(keys[main - 1], 0u) << what;
+                                }
                                 for (uint32_t c = 1; c < (1u << layers); ++c)
                                     for (int l = 0; l < layers; ++l) {
                                         if (!((c >> l) & 1u)) continue;
@@ -195,7 +197,9 @@ TEST(ATrousTileSchedule, LevelKeysKeepEveryPixelCurrentInTheSourceImage) {
                                             ASSERT_EQ(img[src], cur) << what << " level " << i;
                                             const bool active = (s[i].layers >> l) & 1u;
                                             const bool runs = keys[i] == 0 || (c & keys[i]) != 0;
-                                            if (active) ASSERT_TRUE(runs) << what << " level " << i;
+                                            if (active) {
+                                                ASSERT_TRUE(runs) << what << " level " << i;
+                                            }
                                             if (runs) {
                                                 if (active) cur = int(i) + 1;
                                                 img[dst] = cur;
@@ -258,9 +262,10 @@ TEST_F(ATrousTileTest, TileDispatchEqualsFullScreenBitForBit) {
         EXPECT_EQ(full.variant.find(",tiles"), std::string::npos) << full.variant;
         EXPECT_TRUE(identical(tiles.denoised, full.denoised)) << "case " << k << ": " << c.params;
         // The inputs have holes: where hole filling is on, every pixel ends with a value.
-        if (c.params.find("\"fill\": false") == std::string::npos)
+        if (c.params.find("\"fill\": false") == std::string::npos) {
             for (size_t i = 0; i < tiles.denoised.size(); i += 4)
                 ASSERT_EQ(tiles.denoised[i + 3], 1.0f) << "case " << k << " pixel " << i / 4;
+        }
     }
 }
 
@@ -393,7 +398,9 @@ TEST_F(ATrousTileGazeTest, ListsRebuiltWhenTheGazeMovesAndNotOtherwise) {
         EXPECT_TRUE(identical(out, full->image("dn.denoised").downloadRGBA32F(ctx())))
             << "frame " << f;
         if (f == 2) before = out;
-        if (f == 3) EXPECT_FALSE(identical(out, before)) << "the gaze move changed nothing";
+        if (f == 3) {
+            EXPECT_FALSE(identical(out, before)) << "the gaze move changed nothing";
+        }
     }
     EXPECT_EQ(tiles->records()[tiles->plan().findNode("mask")].status, PassStatus::Cached);
 }
