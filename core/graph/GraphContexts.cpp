@@ -100,6 +100,10 @@ const gpu::Image& GraphExecuteContext::previous(const std::string& field, uint32
     return mGraph.previousFor(mNode, field, framesBack);
 }
 
+std::optional<uint64_t> GraphExecuteContext::inputVersion(const std::string& input) const {
+    return mGraph.inputVersionFor(mNode, input);
+}
+
 void GraphExecuteContext::bindFields(gpu::ComputePipeline& pipeline) {
     const PassNode& node = mPlan.nodes[mNode];
     if (pipeline.hasBinding("camera_info")) pipeline.bind("camera_info", mGraph.cameraBuffer());

@@ -42,6 +42,7 @@ public:
     const gpu::Buffer& buffer(const std::string& field) override;
     bool historyValid(const std::string& field, uint32_t framesBack) const override;
     const gpu::Image& previous(const std::string& field, uint32_t framesBack) override;
+    std::optional<uint64_t> inputVersion(const std::string& input) const override;
     void bindFields(gpu::ComputePipeline& pipeline) override;
     const scene::SceneGpu* scene() const override;
     const scene::FrameCamera& camera() const override;

@@ -7,6 +7,7 @@
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -102,6 +103,11 @@ public:
     // (1..historyFrames). Its content is undefined while historyValid() is false. Shaders get it
     // from bindFields as `prev_<field>` (framesBack 1) or `prev<N>_<field>`.
     virtual const gpu::Image& previous(const std::string& field, uint32_t framesBack = 1) = 0;
+    // A number that changes whenever the source of the connected `input` writes it (a cached
+    // source that did not run leaves it unchanged), so a pass can keep data derived from an input
+    // across frames and rebuild it only when the input changed. nullopt = unknown (treat the
+    // input as changed): a delayed input, an unconnected one, or a context without versions.
+    virtual std::optional<uint64_t> inputVersion(const std::string&) const { return std::nullopt; }
     // Binds every shader resource whose name is a connected field of this pass, plus the scene
     // buffers (scene_*) and the frame camera (camera_info) when the shader declares them.
     virtual void bindFields(gpu::ComputePipeline& pipeline) = 0;

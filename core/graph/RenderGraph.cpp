@@ -228,6 +228,13 @@ const gpu::Image& RenderGraph::imageFor(size_t node, const std::string& field) c
     return *r.ring[slotOf(r, in->second.delay)];
 }
 
+std::optional<uint64_t> RenderGraph::inputVersionFor(size_t node, const std::string& input) const {
+    auto in = mPlan.inputs.find({node, input});
+    // A delayed input reads another ring slot every frame: no single version describes it.
+    if (in == mPlan.inputs.end() || in->second.delay != 0) return std::nullopt;
+    return mResources[in->second.resource]->version;
+}
+
 nlohmann::json RenderGraph::passStatistics(size_t node) const {
     if (node >= mPlan.nodes.size() || !mPlan.nodes[node].alive || !mPlan.nodes[node].pass)
         return nullptr;

@@ -5,6 +5,7 @@
 #pragma once
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -91,6 +92,7 @@ public:
     const gpu::Buffer& bufferFor(size_t node, const std::string& field) const;
     bool historyValidFor(size_t node, const std::string& field, uint32_t framesBack) const;
     const gpu::Image& previousFor(size_t node, const std::string& field, uint32_t framesBack) const;
+    std::optional<uint64_t> inputVersionFor(size_t node, const std::string& input) const;
     const gpu::Image& dummyImage(vk::Format format);
     const gpu::Buffer& dummyBuffer();  // kDummyBufferBytes of zeros
 

@@ -16,14 +16,19 @@ const std::vector<std::string> kStepOrders = {"decreasing", "increasing"};
 const std::vector<std::string> kSchedules = {"levels", "layers"};
 const std::vector<std::string> kPositionUnits = {"scene", "depth"};
 const std::vector<std::string> kPositionTerms = {"plane", "distance"};
+const std::vector<std::string> kDispatches = {"tiles", "full"};
 constexpr int kMaxIterations = 16;
 // atrous_fill block: uvec4 fillArgs, uvec4 copyArgs, uint holes, uint executed (+ padding).
 constexpr vk::DeviceSize kFillStateBytes = 48;
 constexpr vk::DeviceSize kFillArgsOffset = 0, kCopyArgsOffset = 16;
 // State image codes of the shader: 0 = input colour (source) or `denoised` (destination),
-// 1 = ping, 2 = pong, 3 = `denoised` as a source (fill levels).
-constexpr int kInput = 0, kPing = 1, kPong = 2, kDenoisedSource = 3, kDenoised = 0;
+// 1 = ping, 3 = `denoised` as a source.
+constexpr int kInput = 0, kPing = 1, kDenoisedSource = 3, kDenoised = 0;
 enum FillArgsMode { kResetCounters = 0, kFillLevelArgs = 1, kCopyBackArgs = 2 };
+// atrous_tiles block (tile_lists.comp): 8 x uvec4 indirect args + count, then 8 lists.
+constexpr vk::DeviceSize kTileArgsBytes = 8 * 16;
+constexpr uint32_t kTileSize = 8;  // = atrous_nh.comp's workgroup
+enum TileListMode { kResetTiles = 0, kBuildTiles = 1, kFinalizeTiles = 2 };
 
 // 1 / sigma^2, or 0 = the term is off (sigma 0 would divide by zero).
 float invSquare(float sigma) {
@@ -80,6 +85,12 @@ void ATrousNHPass::params(graph::ParamVisitor& v) {
           "tangent plane, in positionUnit (bounds how far along a surface a tap may reach: a "
           "lighting gradient over a wall is not flattened); 0 = unbounded",
           {0.0, 1e30});
+    v.add("dispatch", mDispatch, "tiles",
+          "tiles: with a mask and 2-3 layers each level runs only on the 8x8 tiles holding the "
+          "layers it updates (indirect dispatch from tile lists built on the GPU from the mask, "
+          "rebuilt only when the mask changes; seed 000 §3.4, Alg. 1: the fovea does less work); "
+          "full: every level is a full-screen dispatch (same output)",
+          kDispatches);
 }
 
 void ATrousNHPass::reflect(graph::Reflection& r) const {
@@ -103,10 +114,9 @@ void ATrousNHPass::reflect(graph::Reflection& r) const {
         .doc("denoised radiance; a = 1 where the pixel has a value, 0 where its eye has none");
     r.internal("ping", vk::Format::eR32G32B32A32Sfloat)
         .sameAs("color")
-        .doc("iteration state A: rgb colour, a = valid (1) or not (0)");
-    r.internal("pong", vk::Format::eR32G32B32A32Sfloat)
-        .sameAs("color")
-        .doc("iteration state B (ping-pong with A)");
+        .doc(
+            "iteration state: rgb colour, a = valid (1) or not (0); levels ping-pong between "
+            "it and `denoised`");
 }
 
 void ATrousNHPass::compile(graph::CompileContext& ctx) {
@@ -121,18 +131,36 @@ void ATrousNHPass::compile(graph::CompileContext& ctx) {
     mVariant =
         "layers=" + std::to_string(mLayers) + ",iterations=" + std::to_string(mIterations[0]);
     for (int l = 1; l < mLayers; ++l) mVariant += "/" + std::to_string(mIterations[l]);
+    mUseTiles = mDispatch == "tiles" && mUseMask && mLayers > 1;
     mVariant +=
         "," + mStepOrder + "," + mSchedule + (mFill ? ",fill" : "") + (mUseMask ? ",mask" : "") +
-        (mUseNormal ? ",normal" : "") +
+        (mUseTiles ? ",tiles" : "") + (mUseNormal ? ",normal" : "") +
         (mUsePosition ? ",position" + std::string(mPositionUnit == "depth" ? "/depth" : "") + "/" +
                             mPositionTerm
                       : "");
-    mPipeline = ctx.createPipeline("atrous_nh/atrous_nh.comp", {}, {"atrous_fill"});
+    mPipeline = ctx.createPipeline("atrous_nh/atrous_nh.comp", {}, {"atrous_fill", "atrous_tiles"});
     mFillArgs = ctx.createPipeline("atrous_nh/fill_args.comp", {}, {"atrous_fill"});
     mFillState = std::make_unique<gpu::Buffer>(
         ctx.gpu(), kFillStateBytes,
         vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eIndirectBuffer, false,
         name() + ".fill");
+    // Tile lists: one per key (set of layers), each with room for every tile of the image.
+    const auto extent = ctx.extent("color");
+    mTileCount = ((extent.width + kTileSize - 1) / kTileSize) *
+                 ((extent.height + kTileSize - 1) / kTileSize);
+    const vk::DeviceSize listBytes = mUseTiles ? 8 * vk::DeviceSize(mTileCount) * 4 : 4;
+    mTiles = std::make_unique<gpu::Buffer>(ctx.gpu(), kTileArgsBytes + listBytes,
+                                           vk::BufferUsageFlagBits::eStorageBuffer |
+                                               vk::BufferUsageFlagBits::eIndirectBuffer |
+                                               vk::BufferUsageFlagBits::eTransferSrc,
+                                           false, name() + ".tiles");
+    mTileLists =
+        mUseTiles ? ctx.createPipeline("atrous_nh/tile_lists.comp", {}, {"atrous_tiles"}) : nullptr;
+    mTilesBuilt = false;
+}
+
+nlohmann::json ATrousNHPass::statistics(const graph::StatisticsContext&) const {
+    return {{"tile_list_builds", mTileBuilds}};
 }
 
 ATrousScheduleOptions ATrousNHPass::scheduleOptions(int width, int height, int eyes) const {
@@ -144,6 +172,66 @@ ATrousScheduleOptions ATrousNHPass::scheduleOptions(int width, int height, int e
     o.fill = mFill;
     o.fillReach = std::max(width / std::max(eyes, 1), height);
     return o;
+}
+
+std::vector<uint32_t> ATrousNHPass::levelTileKeys(const std::vector<ATrousDispatch>& schedule,
+                                                  int layers, bool tiles) {
+    // Tile lists (seed 000 §3.4, Algorithm 1: a level reconstructs only its layers' area).
+    // Invariant, after main level i: every pixel's current state is in dst_i, and every pixel
+    // that level i did not filter is valid in BOTH state images (ping and `denoised`). Then:
+    //  - level 0 runs on the whole screen and also writes each pixel it copies unchanged into
+    //    the other image (alsoDst): the invariant holds after it;
+    //  - level i > 0 must run on the tiles it filters (layers_i) and on the tiles level i - 1
+    //    filtered (layers_{i-1}): their pixels are valid only in src_i and are copied to dst_i.
+    //    Any other tile was not filtered by level i - 1, so it is valid in both images already
+    //    and needs no work. Hence key_i = layers_i | layers_{i-1};
+    //  - the last level, when it counts holes for the fill levels, sees every pixel (full).
+    // 0 = full-screen dispatch; a key equal to every layer is full screen too (no list needed).
+    std::vector<uint32_t> keys;
+    size_t mainLevels = 0;
+    while (mainLevels < schedule.size() && !schedule[mainLevels].fill) ++mainLevels;
+    const bool anyFill = mainLevels < schedule.size();
+    const uint32_t all = (1u << std::clamp(layers, 1, 3)) - 1u;
+    for (size_t i = 0; i < mainLevels; ++i) {
+        uint32_t key = 0;
+        if (tiles && i > 0 && !(anyFill && i + 1 == mainLevels)) {
+            key = (schedule[i].layers | schedule[i - 1].layers) & all;
+            if (key == all) key = 0;
+        }
+        keys.push_back(key);
+    }
+    return keys;
+}
+
+void ATrousNHPass::buildTileLists(graph::ExecuteContext& ctx, uint32_t keys) {
+    // Rebuilt only when the mask changed: the graph bumps an input's version whenever its
+    // producer writes it, and FoveationMask is cached while the gaze, size and parameters stay
+    // (one build per gaze, no read-back). The image handle guards against a rebuilt graph.
+    const auto version = ctx.inputVersion("mask");
+    const vk::Image maskImage = ctx.image("mask").image();
+    if (mTilesBuilt && version && *version == mTileVersion && maskImage == mTileMaskImage &&
+        (keys & ~mTileKeys) == 0)
+        return;
+    const auto& out = ctx.image("denoised");
+    ctx.bindFields(*mTileLists);
+    mTileLists->bind("atrous_tiles", *mTiles)
+        .set("size", glm::ivec2(int(out.width()), int(out.height())))
+        .set("layerCount", mLayers)
+        .set("tileStride", int(mTileCount))
+        .set("keys", int(keys));
+    // Last frame's indirect reads of the lists are done before they are overwritten.
+    gpu::computeToIndirectBarrier(ctx.cmd());
+    mTileLists->set("mode", int(kResetTiles)).dispatch(ctx.cmd(), 1);
+    gpu::computeToComputeBarrier(ctx.cmd());
+    mTileLists->set("mode", int(kBuildTiles)).dispatch(ctx.cmd(), out.width(), out.height());
+    gpu::computeToComputeBarrier(ctx.cmd());
+    mTileLists->set("mode", int(kFinalizeTiles)).dispatch(ctx.cmd(), 1);
+    gpu::computeToIndirectBarrier(ctx.cmd());
+    mTilesBuilt = true;
+    mTileVersion = version.value_or(0);
+    mTileMaskImage = maskImage;
+    mTileKeys = keys;
+    ++mTileBuilds;
 }
 
 void ATrousNHPass::execute(graph::ExecuteContext& ctx) {
@@ -164,15 +252,22 @@ void ATrousNHPass::execute(graph::ExecuteContext& ctx) {
         .set("positionRelative", int(mPositionUnit == "depth"))
         .set("positionPlane", int(mPositionTerm == "plane"))
         .set("invSigmaTangent2",
-             mUsePosition && mPositionTerm == "plane" ? invSquare(mSigmaTangent) : 0.0f);
+             mUsePosition && mPositionTerm == "plane" ? invSquare(mSigmaTangent) : 0.0f)
+        .set("tileKey", 0)
+        .set("tileStride", int(mTileCount))
+        .set("alsoDst", -1);
 
-    // Main levels ping-pong between ping and pong and end in `denoised`; they run as plain
-    // dispatches (their count is fixed by the parameters).
+    // Main levels ping-pong between ping and `denoised`, ending in `denoised`; their count is
+    // fixed by the parameters. Full screen, or (tiles) only over the tiles that need them.
     size_t mainLevels = 0;
     while (mainLevels < schedule.size() && !schedule[mainLevels].fill) ++mainLevels;
     const bool anyFill = mainLevels < schedule.size();
+    const auto keys = levelTileKeys(schedule, mLayers, mUseTiles);
+    uint32_t usedKeys = 0;
+    for (uint32_t k : keys) usedKeys |= k != 0 ? 1u << k : 0u;
+    if (usedKeys != 0) buildTileLists(ctx, usedKeys);
     const auto groups = mPipeline->groupCount(out.width(), out.height());
-    mPipeline->bind("atrous_fill", *mFillState);
+    mPipeline->bind("atrous_fill", *mFillState).bind("atrous_tiles", *mTiles);
     mFillArgs->bind("atrous_fill", *mFillState);
     auto fillArgs = [&](FillArgsMode mode) {
         mFillArgs->set("mode", int(mode)).set("fullGroups", glm::ivec2(groups[0], groups[1]));
@@ -187,17 +282,23 @@ void ATrousNHPass::execute(graph::ExecuteContext& ctx) {
     int src = kInput;
     for (size_t i = 0; i < mainLevels; ++i) {
         const bool last = i + 1 == mainLevels;
-        const int dst = last ? kDenoised : (i % 2 == 0 ? kPing : kPong);
+        const int dst = (mainLevels - 1 - i) % 2 == 0 ? kDenoised : kPing;
         if (i > 0) gpu::computeToComputeBarrier(ctx.cmd());
         mPipeline->set("src", src)
             .set("dst", dst)
             .set("activeLayers", int(schedule[i].layers))
             .set("stepWidth", schedule[i].step)
             .set("fillOnly", 0)
-            .set("countHoles", int(last && anyFill));
-        mPipeline->dispatch(ctx.cmd(), out.width(), out.height());
-        src = dst;
+            .set("countHoles", int(last && anyFill))
+            .set("tileKey", int(keys[i]))
+            .set("alsoDst", mUseTiles && i == 0 && !last ? (dst == kPing ? kDenoised : kPing) : -1);
+        if (keys[i] == 0)
+            mPipeline->dispatch(ctx.cmd(), out.width(), out.height());
+        else
+            mPipeline->dispatchIndirect(ctx.cmd(), *mTiles, vk::DeviceSize(keys[i]) * 16);
+        src = dst == kPing ? kPing : kDenoisedSource;
     }
+    mPipeline->set("tileKey", 0).set("alsoDst", -1);
     if (!anyFill) return;
     if (mainLevels == 0) {
         // No main level: a copy brings the input into `denoised` and counts its holes.

@@ -19,9 +19,22 @@ public:
     void compile(graph::CompileContext& ctx) override;
     void execute(graph::ExecuteContext& ctx) override;
     std::string variant() const override { return mVariant; }
+    // tile_list_builds: how often the tile lists were rebuilt (once per mask change).
+    nlohmann::json statistics(const graph::StatisticsContext& ctx) const override;
 
     // The schedule execute() records for an image of `width` x `height` with `eyes` eyes.
     ATrousScheduleOptions scheduleOptions(int width, int height, int eyes) const;
+    // Per main level of `schedule`: the tile list (a set of layers, bit l = layer l) its dispatch
+    // runs over, or 0 for a full-screen dispatch (always 0 without `tiles`). See the .cpp for why
+    // key_i = layers_i | layers_{i-1} keeps the ping-pong images right.
+    static std::vector<uint32_t> levelTileKeys(const std::vector<ATrousDispatch>& schedule,
+                                               int layers, bool tiles);
+
+    // For tests: the tile lists (atrous_tiles block of shaders/atrous_nh/tile_lists.comp) and
+    // the capacity of one list; null before compile.
+    const gpu::Buffer* tileLists() const { return mTiles.get(); }
+    uint32_t tileCount() const { return mTileCount; }
+    uint64_t tileListBuilds() const { return mTileBuilds; }
 
 private:
     int mLayers = 1;
@@ -36,6 +49,7 @@ private:
     std::string mPositionUnit = "scene";
     std::string mPositionTerm = "plane";
     float mSigmaTangent = 0.0f;
+    std::string mDispatch = "tiles";
     bool mUseMask = false, mUseNormal = false, mUsePosition = false;
     std::string mVariant;
     std::unique_ptr<gpu::ComputePipeline> mPipeline;
@@ -43,6 +57,18 @@ private:
     // sets to 0 once no hole is left (no read-back; most frames need no fill level at all).
     std::unique_ptr<gpu::ComputePipeline> mFillArgs;
     std::unique_ptr<gpu::Buffer> mFillState;  // atrous_fill block (shaders/atrous_nh)
+    // Layer-restricted levels (dispatch = tiles, mask, >= 2 layers): per-key tile lists built by
+    // tile_lists.comp, cached until the mask input's version (or image) changes.
+    void buildTileLists(graph::ExecuteContext& ctx, uint32_t keys);
+    bool mUseTiles = false;
+    std::unique_ptr<gpu::ComputePipeline> mTileLists;
+    std::unique_ptr<gpu::Buffer> mTiles;  // atrous_tiles block
+    uint32_t mTileCount = 0;
+    bool mTilesBuilt = false;
+    uint64_t mTileVersion = 0;
+    vk::Image mTileMaskImage;
+    uint32_t mTileKeys = 0;
+    uint64_t mTileBuilds = 0;
 };
 
 }  // namespace fovea::passes

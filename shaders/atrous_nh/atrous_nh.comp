@@ -1,7 +1,8 @@
 #version 460
 // ATrousNH: one level of the non-homogeneous edge-avoiding à-trous filter (seed 000 §3.4,
 // Eq. 2, Algorithm 1; Dammertz et al. 2010). The pass dispatches this shader once per level of
-// its schedule, ping-ponging between two state images (rgb colour, a = valid 0/1).
+// its schedule, ping-ponging between two state images (rgb colour, a = valid 0/1): `ping` and
+// `denoised`, so that the last level lands in `denoised`.
 //  - Pixels of layers not in `activeLayers` are copied unchanged (Algorithm 1: "each iteration
 //    in a layer reconstructs only the area corresponding to that layer"); neighbours are read
 //    from any layer.
@@ -20,7 +21,6 @@ uniform sampler2D normal;
 uniform sampler2D position;
 layout(r32ui) uniform readonly uimage2D mask;
 layout(rgba32f) uniform image2D ping;
-layout(rgba32f) uniform image2D pong;
 layout(rgba32f) uniform image2D denoised;  // also the source of even fill levels (src 3)
 // Hole counter of the GPU-driven fill levels (fill_args.comp turns it into group counts).
 layout(std430) buffer atrous_fill {
@@ -29,6 +29,12 @@ layout(std430) buffer atrous_fill {
     uint holes;
     uint executed;
 };
+// Tile lists (tile_lists.comp): with tileKey > 0 a workgroup handles the 8x8 tile listed at its
+// index in list tileKey, so a level runs only on the tiles holding its layers.
+layout(std430) readonly buffer atrous_tiles {
+    uvec4 tileArgs[8];  // per key: indirect (x, y, 1) + tile count in .w
+    uint tileIds[];     // key k's tiles at [k * tileStride, ...), packed x | y << 16
+};
 
 layout(push_constant) uniform Params {
     ivec2 size;
@@ -36,8 +42,8 @@ layout(push_constant) uniform Params {
     int eyes;          // 1 or 2
     int layerCount;    // 1..3
     int useMask;
-    int src;           // 0 = input color (+ mask), 1 = ping, 2 = pong, 3 = denoised
-    int dst;           // 0 = denoised, 1 = ping, 2 = pong
+    int src;           // 0 = input color (+ mask), 1 = ping, 3 = denoised
+    int dst;           // 0 = denoised, 1 = ping
     int activeLayers;  // bit l: layer l is updated
     int stepWidth;     // 2^i
     int fillOnly;      // 1: only pixels without a value are updated
@@ -48,6 +54,10 @@ layout(push_constant) uniform Params {
     int positionRelative;  // 1: position distances in units of p's distance to its eye
     int positionPlane;     // 1: tangent-plane distance |n_p . (x_q - x_p)|; 0: |x_q - x_p|
     float invSigmaTangent2;  // plane term: 1 / sigmaTangent^2 on the distance along the plane
+    // Tile-restricted dispatch (appended after any other field):
+    int tileKey;     // 0: full screen (one invocation per pixel); k > 0: tiles of list k
+    int tileStride;  // capacity of one tile list
+    int alsoDst;     // -1, or a second destination of the pixels copied unchanged (0 / 1)
 } pc;
 
 // Mask word (FoveationMask): bit 0 sampled (B of Eq. 2), bits 1-2 layer id, bits 16-31 spp.
@@ -60,7 +70,6 @@ bool finite4(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
 // (possibly huge or NaN) colour is never even copied.
 vec4 loadState(ivec2 q) {
     if (pc.src == 1) return imageLoad(ping, q);
-    if (pc.src == 2) return imageLoad(pong, q);
     if (pc.src == 3) return imageLoad(denoised, q);
     vec4 c = texelFetch(color, q, 0);
     bool ok = c.a > 0.0 && finite4(c);
@@ -68,11 +77,14 @@ vec4 loadState(ivec2 q) {
     return ok ? vec4(c.rgb, 1.0) : vec4(0.0);
 }
 
+void storeTo(int image, ivec2 p, vec4 s) {
+    if (image == 1) imageStore(ping, p, s);
+    else imageStore(denoised, p, s);
+}
+
 void storeState(ivec2 p, vec4 s) {
     if (pc.countHoles != 0 && s.a <= 0.5) atomicAdd(holes, 1u);
-    if (pc.dst == 1) imageStore(ping, p, s);
-    else if (pc.dst == 2) imageStore(pong, p, s);
-    else imageStore(denoised, p, s);
+    storeTo(pc.dst, p, s);
 }
 
 int layerOf(ivec2 p) {
@@ -88,12 +100,22 @@ float edgeWeight(float d2, float invSigma2) {
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (pc.tileKey > 0) {
+        // Workgroups beyond the list's count fill the last row of a 2D indirect grid.
+        uint index = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+        if (index >= tileArgs[pc.tileKey].w) return;
+        uint tile = tileIds[uint(pc.tileKey * pc.tileStride) + index];
+        p = ivec2(tile & 0xffffu, tile >> 16) * 8 + ivec2(gl_LocalInvocationID.xy);
+    }
     if (any(greaterThanEqual(p, pc.size))) return;
     vec4 centre = loadState(p);
     bool centreValid = centre.a > 0.5;
     bool updated = pc.fillOnly != 0 ? !centreValid : ((pc.activeLayers >> layerOf(p)) & 1) != 0;
     if (!updated) {
         storeState(p, centre);
+        // Tile path, first level: an unchanged pixel is valid in both state images, so levels
+        // that skip its tile need not copy it (ATrousNHPass.cpp, "tile lists").
+        if (pc.alsoDst >= 0) storeTo(pc.alsoDst, p, centre);
         return;
     }
     int eye = min(p.x / pc.eyeWidth, pc.eyes - 1);  // eyeWidth >= 1 (pass clamps)
