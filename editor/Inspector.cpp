@@ -174,7 +174,7 @@ void Inspector::setParamText(const std::string& passParam, const std::string& te
 void Inspector::applyDesc(const graph::GraphDesc& desc, const std::string& what, bool paramsOnly) {
     try {
         graph::compileGraphPlan(desc, graph::passRegistry(), mSession.compileOptions());
-        ParamChange change{what, 0, {}};
+        AppliedChange change{what, 0, {}};
         const auto start = Clock::now();
         if (paramsOnly)
             change.result = mSession.update(desc);

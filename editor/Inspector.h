@@ -46,7 +46,7 @@ struct InspectorTimes {
 };
 
 // A parameter change as applied (docs/inspector.md, "Parameters"; docs/benchmarks.md).
-struct ParamChange {
+struct AppliedChange {
     std::string what;
     double ms = 0;  // CPU wall time of compile + update (or rebuild)
     graph::RenderGraph::UpdateResult result;
@@ -63,7 +63,7 @@ public:
     // frames drawn.
     uint32_t run();
     const std::vector<InspectorTimes>& times() const { return mTimes; }
-    const std::vector<ParamChange>& changes() const { return mChanges; }
+    const std::vector<AppliedChange>& changes() const { return mChanges; }
     // Bytes the preview holds: CPU copies of the shown images and the window's staging and
     // read-back buffers (docs/benchmarks.md, "Inspector overhead").
     uint64_t previewCpuBytes() const;
@@ -119,7 +119,7 @@ private:
     PreviewSettings mSettings;
     NodePositions mPositions;               // from the editor block and dragging
     std::optional<FreeFlyCamera> mFreeFly;  // set: the camera is steered, not the path's
-    std::vector<ParamChange> mChanges;
+    std::vector<AppliedChange> mChanges;
     std::string mSaveAsPath = "graph_edited.json";
     bool mConfirmOverwrite = false;
     std::optional<Gaze> mGaze;

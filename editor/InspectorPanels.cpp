@@ -409,7 +409,7 @@ nlohmann::json Inspector::screenshotInfo(uint32_t width, uint32_t height) const 
         info["camera"]["position"] = {p.x, p.y, p.z};
     }
     if (!mChanges.empty()) {
-        const ParamChange& c = mChanges.back();
+        const AppliedChange& c = mChanges.back();
         info["last_change"] = {{"what", c.what},
                                {"ms", c.ms},
                                {"in_place", c.result.inPlace},
