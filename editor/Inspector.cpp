@@ -183,11 +183,16 @@ void Inspector::applyDesc(const graph::GraphDesc& desc, const std::string& what,
         change.ms = msSince(start);
         mChanges.push_back(change);
         if (!mOptions.quiet) {
-            std::cerr << "fovea: inspect: " << what << ": " << change.ms << " ms, "
-                      << (change.result.inPlace ? "in place (recompiled:" : "full rebuild (");
-            for (const auto& p : change.result.recompiled) std::cerr << " " << p;
-            std::cerr << "; pipelines created " << change.result.pipelinesCreated << ", reused "
-                      << change.result.pipelinesReused << ")\n";
+            std::cerr << "fovea: inspect: " << what << ": " << change.ms << " ms, ";
+            if (!paramsOnly) {
+                std::cerr << "full rebuild\n";
+            } else {
+                std::cerr << (change.result.inPlace ? "in place (recompiled:"
+                                                    : "rebuilt (plan changed;");
+                for (const auto& p : change.result.recompiled) std::cerr << " " << p;
+                std::cerr << "; pipelines created " << change.result.pipelinesCreated << ", reused "
+                          << change.result.pipelinesReused << ")\n";
+            }
         }
         mError.clear();
     } catch (const std::exception& e) {
