@@ -120,9 +120,11 @@ void drawPreviewPane(const image::ImageRGBA& src, const PreviewSettings& s, bool
             std::min(float(paneWidth) / float(src.width), float(height) / float(src.height)) * zoom;
         fit.width = std::max(1u, uint32_t(float(src.width) * fit.scale));
         fit.height = std::max(1u, uint32_t(float(src.height) * fit.scale));
-        fit.offsetX =
-            paneX + int(paneWidth) / 2 - int(std::lround(s.view.centerX * float(fit.width)));
-        fit.offsetY = int(height) / 2 - int(std::lround(s.view.centerY * float(fit.height)));
+        // Centred as before zooming existed ((pane - image) / 2), shifted by the pan.
+        fit.offsetX = paneX + (int(paneWidth) - int(fit.width)) / 2 +
+                      int(std::lround((0.5f - s.view.centerX) * float(fit.width)));
+        fit.offsetY = (int(height) - int(fit.height)) / 2 +
+                      int(std::lround((0.5f - s.view.centerY) * float(fit.height)));
         fit.imageWidth = src.width;
         fit.imageHeight = src.height;
     }
