@@ -1,6 +1,7 @@
 #include "editor/GraphLayout.h"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 
 namespace fovea::editor {
@@ -40,7 +41,8 @@ size_t slotIndex(const std::vector<LayoutSlot>& slots, const std::string& field)
 
 }  // namespace
 
-GraphLayout layoutGraph(const graph::CompiledPlan& plan, const LayoutMetrics& m) {
+GraphLayout layoutGraph(const graph::CompiledPlan& plan, const LayoutMetrics& m,
+                        const NodePositions* positions) {
     GraphLayout layout;
     const size_t n = plan.nodes.size();
     layout.nodes.resize(n);
@@ -75,7 +77,13 @@ GraphLayout layoutGraph(const graph::CompiledPlan& plan, const LayoutMetrics& m)
         node.height = m.header + float(slots) * m.slotPitch + m.slotPitch * 0.5f;
         node.x = m.margin + float(node.column) * (m.nodeWidth + m.columnGap);
         node.y = nextY[size_t(node.column)];
-        nextY[size_t(node.column)] = node.y + node.height + m.rowGap;
+        if (auto saved = positions ? positions->find(node.name) : NodePositions::const_iterator{};
+            positions && saved != positions->end()) {
+            node.x = std::max(0.0f, saved->second[0]);
+            node.y = std::max(0.0f, saved->second[1]);
+        } else {
+            nextY[size_t(node.column)] = node.y + node.height + m.rowGap;
+        }
         for (size_t s = 0; s < node.inputs.size(); ++s)
             node.inputs[s] = {node.inputs[s].field, node.x,
                               node.y + m.header + (float(s) + 0.5f) * m.slotPitch};
@@ -98,6 +106,36 @@ GraphLayout layoutGraph(const graph::CompiledPlan& plan, const LayoutMetrics& m)
             layout.edges.push_back(edge);
     }
     return layout;
+}
+
+NodePositions readNodePositions(const nlohmann::json& editorBlock, std::string& problems) {
+    NodePositions out;
+    if (!editorBlock.is_object() || !editorBlock.contains("nodes")) return out;
+    const nlohmann::json& nodes = editorBlock["nodes"];
+    if (!nodes.is_object()) {
+        problems += "editor.nodes: expected an object {\"<pass>\": [x, y]}\n";
+        return out;
+    }
+    for (const auto& [name, value] : nodes.items()) {
+        const bool ok = value.is_array() && value.size() == 2 && value[0].is_number() &&
+                        value[1].is_number() && std::isfinite(value[0].get<double>()) &&
+                        std::isfinite(value[1].get<double>());
+        if (!ok) {
+            problems += "editor.nodes." + name + ": expected [x, y] (finite numbers)\n";
+            continue;
+        }
+        out[name] = {value[0].get<float>(), value[1].get<float>()};
+    }
+    return out;
+}
+
+nlohmann::json writeNodePositions(nlohmann::json editorBlock, const GraphLayout& layout) {
+    if (!editorBlock.is_object()) editorBlock = nlohmann::json::object();
+    nlohmann::json nodes = nlohmann::json::object();
+    // Whole pixels: the file stays readable and a load gives back exactly what was saved.
+    for (const LayoutNode& n : layout.nodes) nodes[n.name] = {std::round(n.x), std::round(n.y)};
+    editorBlock["nodes"] = nodes;
+    return editorBlock;
 }
 
 }  // namespace fovea::editor

@@ -3,8 +3,11 @@
 // (and `order` constraints) leading to the pass, rows by compiled execution order. A pure
 // function of the plan (no window, no GPU), so it is unit-tested on every shipped graph.
 #pragma once
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -40,6 +43,19 @@ struct GraphLayout {
     float width = 0, height = 0;    // extent including the margin
 };
 
-GraphLayout layoutGraph(const graph::CompiledPlan& plan, const LayoutMetrics& metrics = {});
+// Node positions (top-left, graph-view coordinates) by pass name, as saved in the graph file's
+// `editor` block: {"nodes": {"<pass>": [x, y], ...}} (docs/inspector.md, "Save as").
+using NodePositions = std::map<std::string, std::array<float, 2>>;
+
+// Nodes named in `positions` are placed there (negative coordinates clamp to 0); the others
+// follow the layered layout. The extent covers every node.
+GraphLayout layoutGraph(const graph::CompiledPlan& plan, const LayoutMetrics& metrics = {},
+                        const NodePositions* positions = nullptr);
+
+// Reads editor.nodes; an entry that is not [x, y] with finite numbers is skipped and described
+// in `problems` ("editor.nodes.tm: expected [x, y]"), so a hand-edited block never stops a load.
+NodePositions readNodePositions(const nlohmann::json& editorBlock, std::string& problems);
+// The editor block with "nodes" replaced by every node's position in `layout` (other keys kept).
+nlohmann::json writeNodePositions(nlohmann::json editorBlock, const GraphLayout& layout);
 
 }  // namespace fovea::editor

@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cfloat>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <fstream>
 
 #include "core/graph/PassRegistry.h"
@@ -34,6 +37,19 @@ namespace {
 
 ImU32 colourOf(const std::array<uint8_t, 3>& c, uint8_t alpha = 255) {
     return IM_COL32(c[0], c[1], c[2], alpha);
+}
+
+// Distance from `p` to a cubic Bezier, sampled at 32 points (edges are short, clicks coarse).
+float bezierDistance(ImVec2 a, ImVec2 c1, ImVec2 c2, ImVec2 b, ImVec2 p) {
+    float best = FLT_MAX;
+    for (int i = 0; i <= 32; ++i) {
+        const float t = float(i) / 32.0f, u = 1.0f - t;
+        const float w0 = u * u * u, w1 = 3 * u * u * t, w2 = 3 * u * t * t, w3 = t * t * t;
+        const float x = w0 * a.x + w1 * c1.x + w2 * c2.x + w3 * b.x;
+        const float y = w0 * a.y + w1 * c1.y + w2 * c2.y + w3 * b.y;
+        best = std::min(best, std::hypot(x - p.x, y - p.y));
+    }
+    return best;
 }
 
 constexpr ImU32 kEdgeColour = IM_COL32(200, 200, 210, 200);
@@ -75,21 +91,40 @@ void Inspector::drawGraphView() {
     mCanvasClip = {draw->GetClipRectMin().x, draw->GetClipRectMin().y, draw->GetClipRectMax().x,
                    draw->GetClipRectMax().y};
     auto at = [&](float x, float y) { return ImVec2(origin.x + x, origin.y + y); };
+    bool moved = false;
 
+    // A click near an edge previews the field it carries (what its input reads, delay included).
+    const ImVec2 mouse = ImGui::GetIO().MousePos;
+    const bool clicked =
+        ImGui::IsWindowHovered() && ImGui::IsMouseClicked(0) && !ImGui::IsAnyItemHovered();
+    std::string edgeHit;
+    float edgeHitDistance = 6.0f;  // pixels
     for (const LayoutEdge& e : mLayout.edges) {
         const LayoutSlot& from = mLayout.nodes[e.fromNode].outputs[e.fromSlot];
         const LayoutSlot& to = mLayout.nodes[e.toNode].inputs[e.toSlot];
         const ImVec2 a = at(from.x, from.y), b = at(to.x, to.y);
         const float bend = std::max(40.0f, std::abs(b.x - a.x) * 0.4f);
-        const ImU32 colour = e.delay ? kDelayEdgeColour : kEdgeColour;
-        draw->AddBezierCubic(a, ImVec2(a.x + bend, a.y), ImVec2(b.x - bend, b.y), b, colour,
-                             e.delay ? 2.5f : 1.5f);
+        const std::string carried = mLayout.nodes[e.toNode].name + "." + to.field;
+        const bool shown = carried == mPreview;
+        const ImU32 colour =
+            shown ? IM_COL32(255, 230, 80, 255) : (e.delay ? kDelayEdgeColour : kEdgeColour);
+        const ImVec2 c1(a.x + bend, a.y), c2(b.x - bend, b.y);
+        draw->AddBezierCubic(a, c1, c2, b, colour, e.delay || shown ? 2.5f : 1.5f);
+        if (clicked) {
+            const float d = bezierDistance(a, c1, c2, b, mouse);
+            if (d < edgeHitDistance) {
+                edgeHitDistance = d;
+                edgeHit = carried;
+            }
+        }
         if (e.delay) {
             const std::string label = "z^-" + std::to_string(e.delay);
             draw->AddText(ImVec2((a.x + b.x) * 0.5f, (a.y + b.y) * 0.5f - 14), colour,
                           label.c_str());
         }
     }
+
+    if (!edgeHit.empty()) previewField(edgeHit);
 
     const LayoutMetrics metrics;
     mNodeRects.assign(mLayout.nodes.size(), {0, 0, 0, 0});
@@ -111,6 +146,12 @@ void Inspector::drawGraphView() {
         ImGui::SetCursorScreenPos(p0);
         ImGui::PushID(int(i));
         if (ImGui::InvisibleButton("node", ImVec2(n.width, metrics.header))) mSelected = n.name;
+        // Dragging a header moves the node; "save as" writes the positions (editor block).
+        if (ImGui::IsItemActive() && ImGui::IsMouseDragging(0)) {
+            const ImVec2 d = ImGui::GetIO().MouseDelta;
+            mPositions[n.name] = {n.x + d.x, n.y + d.y};
+            moved = true;
+        }
         if (ImGui::IsItemHovered()) {
             std::string tip = n.name + " (" + n.type + "): " + graph::passStatusName(status);
             if (i < records.size() && !records[i].reason.empty()) tip += "\n" + records[i].reason;
@@ -144,10 +185,11 @@ void Inspector::drawGraphView() {
     ImGui::SetCursorScreenPos(origin);
     ImGui::Dummy(ImVec2(mLayout.width, mLayout.height));
     ImGui::EndChild();
+    if (moved) relayout();
 }
 
 void Inspector::drawPreviewPanel() {
-    ImGui::SetNextItemWidth(110);
+    ImGui::SetNextItemWidth(90);
     if (ImGui::BeginCombo("##channel", previewChannelName(mSettings.channel))) {
         for (int c = 0; c <= int(PreviewChannel::Luminance); ++c)
             if (ImGui::Selectable(previewChannelName(PreviewChannel(c)),
@@ -156,18 +198,128 @@ void Inspector::drawPreviewPanel() {
         ImGui::EndCombo();
     }
     ImGui::SameLine();
-    ImGui::SetNextItemWidth(140);
+    ImGui::SetNextItemWidth(110);
     ImGui::SliderFloat("EV", &mSettings.exposure, -10.0f, 10.0f, "%.1f");
     ImGui::SameLine();
     ImGui::Checkbox("false colour", &mSettings.falseColour);
-    ImGui::TextUnformatted(mPreview.empty() ? "(click an output slot)" : mPreview.c_str());
+    ImGui::SameLine();
+    if (ImGui::Button("fit")) mSettings.view = {};
+    ImGui::SameLine();
+    ImGui::Text("x%.1f", double(mSettings.view.zoom));
+    // The second image: any image output of a live pass, or the --reference file.
+    ImGui::SetNextItemWidth(170);
+    if (ImGui::BeginCombo("##compare", mCompare.empty() ? "compare: none" : mCompare.c_str())) {
+        if (ImGui::Selectable("none", mCompare.empty())) compareWith("");
+        if (mOptions.reference.width > 0 && ImGui::Selectable("reference", mCompare == "reference"))
+            compareWith("reference");
+        for (const auto& r : mSession.graph().plan().resources)
+            if (r.isImage && ImGui::Selectable(r.name.c_str(), mCompare == r.name))
+                compareWith(r.name);
+        ImGui::EndCombo();
+    }
+    ImGui::SameLine();
+    ImGui::Checkbox("difference", &mDifference);
+    ImGui::SameLine();
+    if (ImGui::Button("save preview")) savePreview("preview_" + std::to_string(mFrame) + ".exr");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("writes preview_<frame>.exr (full float) in the working folder");
+    std::string title = mPreview.empty() ? "(click an output slot or an edge)" : mPreview;
+    if (!mCompare.empty())
+        title += mDifference ? "  |  |" + mPreview + " - " + mCompare + "|" : "  |  " + mCompare;
+    if (mDifference && !mCompare.empty() && mDifferenceImage.width == 0 && mCompareImage.width > 0)
+        title += "  (sizes differ: " + std::to_string(mPreviewImage.width) + "x" +
+                 std::to_string(mPreviewImage.height) + " vs " +
+                 std::to_string(mCompareImage.width) + "x" + std::to_string(mCompareImage.height) +
+                 ")";
+    ImGui::TextUnformatted(title.c_str());
     const ImVec2 avail = ImGui::GetContentRegionAvail();
     const ImVec2 pos = ImGui::GetCursorScreenPos();
-    ImGui::Dummy(ImVec2(std::max(avail.x, 1.0f), std::max(avail.y, 1.0f)));
+    ImGui::InvisibleButton("preview", ImVec2(std::max(avail.x, 1.0f), std::max(avail.y, 1.0f)),
+                           ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
+    handlePreviewMouse();
     mPreviewRect[0] = pos.x;
     mPreviewRect[1] = pos.y;
     mPreviewRect[2] = std::max(avail.x, 0.0f);
     mPreviewRect[3] = std::max(avail.y, 0.0f);
+}
+
+// Wheel: zoom around the pointer; left drag: pan; right drag: free-fly look (turns it on).
+void Inspector::handlePreviewMouse() {
+    const ImGuiIO& io = ImGui::GetIO();
+    const ImVec2 mouse = io.MousePos;
+    const PreviewFit& fit =
+        mFitB.width > 0 && mouse.x - float(mBlit.x) >= float(mFitB.paneX) ? mFitB : mFit;
+    if (ImGui::IsItemHovered() && io.MouseWheel != 0)
+        zoomAround(mSettings.view, fit, std::exp2(io.MouseWheel * 0.25f), mouse.x - float(mBlit.x),
+                   mouse.y - float(mBlit.y));
+    if (ImGui::IsItemActive() && ImGui::IsMouseDragging(0))
+        panBy(mSettings.view, fit, io.MouseDelta.x, io.MouseDelta.y);
+    if (ImGui::IsItemActive() && ImGui::IsMouseDragging(1)) {
+        setFreeFly(true);
+        if (mFreeFly) mFreeFly->look(io.MouseDelta.x * 0.2f, -io.MouseDelta.y * 0.2f);
+    }
+}
+
+void Inspector::drawSaveAs() {
+    ImGui::SetNextItemWidth(200);
+    char buffer[512];
+    std::snprintf(buffer, sizeof(buffer), "%s", mSaveAsPath.c_str());
+    if (ImGui::InputText("##saveas", buffer, sizeof(buffer))) mSaveAsPath = buffer;
+    ImGui::SameLine();
+    if (ImGui::Button("save as")) {
+        if (std::filesystem::exists(mSaveAsPath))
+            mConfirmOverwrite = true;  // never replace a file without asking
+        else
+            saveAs(mSaveAsPath, false);
+    }
+    if (mConfirmOverwrite) {
+        ImGui::OpenPopup("replace?");
+        mConfirmOverwrite = false;
+    }
+    if (ImGui::BeginPopupModal("replace?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::Text("'%s' exists. Replace it?", mSaveAsPath.c_str());
+        if (ImGui::Button("replace")) {
+            saveAs(mSaveAsPath, true);
+            ImGui::CloseCurrentPopup();
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("cancel")) ImGui::CloseCurrentPopup();
+        ImGui::EndPopup();
+    }
+}
+
+void Inspector::applyGazeFromMouse(const std::pair<uint32_t, uint32_t>& px) {
+    const glm::vec2 uv((float(px.first) + 0.5f) / float(mPreviewImage.width),
+                       (float(px.second) + 0.5f) / float(mPreviewImage.height));
+    Gaze gaze = mGaze.value_or(Gaze{glm::vec2(0.5f), glm::vec2(0.5f)});
+    if (mSession.stereo()) {
+        const int eye = uv.x < 0.5f ? 0 : 1;
+        gaze[size_t(eye)] = glm::vec2(uv.x * 2.0f - float(eye), uv.y);
+    } else {
+        gaze = {uv, uv};
+    }
+    mGaze = gaze;
+}
+
+// The pixel under the mouse in either pane, with its value in A, B and |A - B|.
+void Inspector::drawPixelValues() {
+    const ImVec2 mouse = ImGui::GetIO().MousePos;
+    auto px = previewPixelAt(mBlit, mFit, mouse.x, mouse.y);
+    if (!px) px = previewPixelAt(mBlit, mFitB, mouse.x, mouse.y);
+    if (!px) return;
+    auto show = [&](const char* label, const image::ImageRGBA& img) {
+        if (px->first >= img.width || px->second >= img.height) return;
+        const float* v = &img.pixels[(size_t(px->second) * img.width + px->first) * 4];
+        ImGui::Text("%s (%u, %u) = %.4g %.4g %.4g %.4g", label, px->first, px->second, v[0], v[1],
+                    v[2], v[3]);
+    };
+    show("A", mPreviewImage);
+    if (!mCompare.empty()) {
+        show("B", mCompareImage);
+        if (mDifferenceImage.width > 0) show("|A-B|", mDifferenceImage);
+    }
+    if (mGazeFollowsMouse && px->first < mPreviewImage.width && px->second < mPreviewImage.height)
+        applyGazeFromMouse(*px);
 }
 
 void Inspector::drawSidePanel() {
@@ -186,28 +338,12 @@ void Inspector::drawSidePanel() {
         ImGui::TextWrapped("%s", mError.c_str());
         ImGui::PopStyleColor();
     }
-    // Pixel under the mouse, and the gaze when it follows the mouse.
-    const ImVec2 mouse = ImGui::GetIO().MousePos;
-    if (auto px = previewPixelAt(mBlit, mFit, mouse.x, mouse.y);
-        px && !mPreviewImage.pixels.empty() && px->first < mPreviewImage.width &&
-        px->second < mPreviewImage.height) {
-        const float* v =
-            &mPreviewImage.pixels[(size_t(px->second) * mPreviewImage.width + px->first) * 4];
-        ImGui::Text("(%u, %u) = %.4g %.4g %.4g %.4g", px->first, px->second, v[0], v[1], v[2],
-                    v[3]);
-        if (mGazeFollowsMouse) {
-            const glm::vec2 uv((float(px->first) + 0.5f) / float(mPreviewImage.width),
-                               (float(px->second) + 0.5f) / float(mPreviewImage.height));
-            Gaze gaze = mGaze.value_or(Gaze{glm::vec2(0.5f), glm::vec2(0.5f)});
-            if (mSession.stereo()) {
-                const int eye = uv.x < 0.5f ? 0 : 1;
-                gaze[size_t(eye)] = glm::vec2(uv.x * 2.0f - float(eye), uv.y);
-            } else {
-                gaze = {uv, uv};
-            }
-            mGaze = gaze;
-        }
-    }
+    bool freeFly = mFreeFly.has_value();
+    if (ImGui::Checkbox("free-fly camera (WASD QE, right-drag)", &freeFly)) setFreeFly(freeFly);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("off: the camera follows the graph's camera path");
+    drawSaveAs();
+    drawPixelValues();
     drawTimings();
     if (!mSelected.empty()) {
         const size_t node = g.plan().findNode(mSelected);
@@ -254,17 +390,33 @@ void Inspector::drawTimings() {
                 double(g.plan().persistentBytes()) / 1048576.0);
 }
 
-void Inspector::writeScreenshot(const std::string& path, const image::ImageRGBA& pixels) const {
-    image::writePng(path, pixels, image::PngEncoding::AsIs);
+nlohmann::json Inspector::screenshotInfo(uint32_t width, uint32_t height) const {
     // What a test needs to find things in the picture: where the preview and every node header
-    // were drawn, and each node's status and colour.
+    // were drawn, each node's status and colour, the comparison, camera and last change.
     nlohmann::json info;
     info["frame"] = mFrame;
-    info["window"] = {pixels.width, pixels.height};
-    info["preview"] = {
-        {"resource", mPreview},
-        {"rect", {mBlit.x, mBlit.y, mBlit.width, mBlit.height}},
-        {"image", {mBlit.x + mFit.offsetX, mBlit.y + mFit.offsetY, mFit.width, mFit.height}}};
+    info["window"] = {width, height};
+    info["preview"] = {{"resource", mPreview},
+                       {"rect", {mBlit.x, mBlit.y, mBlit.width, mBlit.height}},
+                       {"image", visibleImageRect(mBlit, mFit)},
+                       {"zoom", mSettings.view.zoom}};
+    info["compare"] = {{"resource", mCompare},
+                       {"difference", mDifference && mDifferenceImage.width > 0},
+                       {"image", visibleImageRect(mBlit, mFitB)}};
+    info["camera"] = {{"mode", mFreeFly ? "freefly" : "path"}};
+    if (mFreeFly) {
+        const glm::vec3 p = mFreeFly->position();
+        info["camera"]["position"] = {p.x, p.y, p.z};
+    }
+    if (!mChanges.empty()) {
+        const AppliedChange& c = mChanges.back();
+        info["last_change"] = {{"what", c.what},
+                               {"ms", c.ms},
+                               {"in_place", c.result.inPlace},
+                               {"recompiled", c.result.recompiled},
+                               {"pipelines_created", c.result.pipelinesCreated},
+                               {"pipelines_reused", c.result.pipelinesReused}};
+    }
     info["selected"] = mSelected;
     info["error"] = mError;
     const auto& records = mSession.graph().records();
@@ -278,11 +430,17 @@ void Inspector::writeScreenshot(const std::string& path, const image::ImageRGBA&
              {"status", graph::passStatusName(status)},
              {"reason", i < records.size() ? records[i].reason : ""},
              {"header", mNodeRects[i]},
+             {"position", {mLayout.nodes[i].x, mLayout.nodes[i].y}},
              {"visible", r[0] >= mCanvasClip[0] && r[1] >= mCanvasClip[1] &&
                              r[0] + r[2] <= mCanvasClip[2] && r[1] + r[3] <= mCanvasClip[3]},
              {"colour", {c[0], c[1], c[2]}}});
     }
-    std::ofstream(path + ".json") << info.dump(2) << "\n";
+    return info;
+}
+
+void Inspector::writeScreenshot(const std::string& path, const image::ImageRGBA& pixels) const {
+    image::writePng(path, pixels, image::PngEncoding::AsIs);
+    std::ofstream(path + ".json") << screenshotInfo(pixels.width, pixels.height).dump(2) << "\n";
 }
 
 }  // namespace fovea::editor

@@ -14,9 +14,12 @@ namespace {
 // Command -> number of arguments.
 const std::map<std::string, size_t>& commands() {
     static const std::map<std::string, size_t> kCommands{
-        {"select", 1},      {"set", 2},    {"preview", 1},   {"channel", 1}, {"exposure", 1},
-        {"falsecolour", 1}, {"gaze", 2},   {"pause", 0},     {"resume", 0},  {"step", 0},
-        {"reset", 0},       {"reload", 1}, {"screenshot", 1}};
+        {"select", 1},     {"set", 2},         {"preview", 1},    {"channel", 1},
+        {"exposure", 1},   {"falsecolour", 1}, {"gaze", 2},       {"pause", 0},
+        {"resume", 0},     {"step", 0},        {"reset", 0},      {"reload", 1},
+        {"screenshot", 1}, {"compare", 1},     {"difference", 1}, {"zoom", 3},
+        {"camera", 1},     {"move", 3},        {"look", 2},       {"place", 3},
+        {"saveas", 1},     {"previewshot", 1}, {"rebuild", 0}};
     return kCommands;
 }
 

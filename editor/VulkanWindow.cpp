@@ -145,6 +145,10 @@ VulkanWindow::~VulkanWindow() {
     if (mWindow) glfwDestroyWindow(mWindow);
 }
 
+uint64_t VulkanWindow::bufferBytes() const {
+    return (mStaging ? mStaging->size() : 0) + (mReadback ? mReadback->size() : 0);
+}
+
 bool VulkanWindow::shouldClose() const {
     return glfwWindowShouldClose(mWindow);
 }

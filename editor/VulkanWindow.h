@@ -55,6 +55,8 @@ public:
     uint32_t minImageCount() const { return mMinImageCount; }
     vk::Extent2D extent() const { return mExtent; }
     bool bgra() const { return mFormat == vk::Format::eB8G8R8A8Unorm; }
+    // Bytes of the host-visible preview staging and screenshot read-back buffers.
+    uint64_t bufferBytes() const;
 
     // Records the UI into the render pass with `recordUi`, copies `preview` (if any) under it,
     // reads the whole image back into `screenshot` (if non-null), presents and waits. Returns

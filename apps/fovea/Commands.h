@@ -111,7 +111,7 @@ struct InspectOptions {
     SceneOptions scene;
     int frames = 0;  // 0 = until the window is closed
     int64_t seed = -1;
-    std::string screenshot, script, device, window = "960x600";
+    std::string screenshot, script, device, window = "960x600", reference;
     bool validation = false, quiet = false, overwrite = false;
 };
 void addInspectCommand(CLI::App& app, InspectOptions& options);

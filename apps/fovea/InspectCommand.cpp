@@ -9,6 +9,7 @@
 #include "apps/fovea/Commands.h"
 #include "apps/fovea/GraphRunner.h"
 #include "core/graph/PassRegistry.h"
+#include "core/image/ImageIO.h"
 #include "core/util/Error.h"
 #include "core/vk/Context.h"
 #include "editor/Inspector.h"
@@ -30,13 +31,17 @@ void addInspectCommand(CLI::App& app, InspectOptions& o) {
                     "after the last frame write the whole window as PNG (+ FILE.json: where the "
                     "preview and nodes are); needs --frames");
     cmd->add_option("--script", o.script, "scripted actions per frame (docs/inspector.md)");
+    cmd->add_option("--reference", o.reference,
+                    "image (EXR, PNG) to compare the preview with: shown beside it, with a "
+                    "difference view");
     cmd->add_option("--window", o.window, "window size WIDTHxHEIGHT (default 960x600)");
     cmd->add_option("--seed", o.seed, "random seed (default: graph default or 0)")
         ->check(CLI::Range(int64_t(0), std::numeric_limits<int64_t>::max()));
     cmd->add_option("--device", o.device, "GPU index or name substring (default: best available)");
     cmd->add_flag("--validation", o.validation, "enable the Vulkan validation layer");
     cmd->add_flag("--no-aliasing", o.graph.noAliasing, "give every transient image its own memory");
-    cmd->add_flag("--overwrite", o.overwrite, "allow screenshots to replace existing files");
+    cmd->add_flag("--overwrite", o.overwrite,
+                  "allow screenshots and script 'saveas' to replace existing files");
     cmd->add_flag("--quiet", o.quiet, "no messages on stderr but errors");
     addSceneOptions(*cmd, o.scene);
 }
@@ -63,17 +68,32 @@ public:
     const graph::GraphDesc& desc() const override { return mDesc; }
     const graph::CompileOptions& compileOptions() const override { return mOptions; }
     bool stereo() const override { return mScene.stereo(); }
+    bool hasScene() const override { return mScene.hasScene(); }
+    scene::CameraDesc pathCamera() override { return mScene.cameraAt(mFrames); }
 
-    graph::FrameTiming runFrame(const std::optional<editor::Gaze>& gaze) override {
-        if (mFrames > 0) {
+    graph::FrameTiming runFrame(const editor::FrameRequest& request) override {
+        if (mFrames > 0 || request.camera) {
             scene::FrameCamera camera =
-                mScene.frameCamera(mFrames, mOptions.width, mOptions.height);
-            if (gaze)
-                for (uint32_t e = 0; e < camera.eyeCount; ++e) camera.eyes[e].gaze = (*gaze)[e];
+                mScene.frameCamera(mFrames, mOptions.width, mOptions.height,
+                                   request.camera ? &*request.camera : nullptr);
+            if (request.gaze)
+                for (uint32_t e = 0; e < camera.eyeCount; ++e)
+                    camera.eyes[e].gaze = (*request.gaze)[e];
             mGraph.setCamera(camera);
         }
         ++mFrames;
         return mGraph.runFrame();
+    }
+
+    graph::RenderGraph::UpdateResult update(const graph::GraphDesc& desc) override {
+        try {
+            auto result = mGraph.update(desc);
+            mDesc = desc;
+            return result;
+        } catch (...) {
+            if (!mGraph.built()) mGraph.build(mDesc, mOptions);  // an in-place failure keeps it
+            throw;
+        }
     }
 
     void rebuild(const graph::GraphDesc& desc) override {
@@ -126,17 +146,24 @@ int inspectCommand(const InspectOptions& o) {
     options.frames = uint32_t(o.frames);
     options.screenshot = o.screenshot;
     options.quiet = o.quiet;
+    options.overwrite = o.overwrite;
     if (!o.script.empty()) options.script = editor::parseInspectorScript(o.script);
-    // Screenshots never replace a file silently.
-    std::vector<std::pair<std::string, std::string>> shots;  // path, what asked for it
-    if (!o.screenshot.empty()) shots.emplace_back(o.screenshot, "--screenshot");
-    for (const auto& cmd : options.script)
-        if (cmd.verb == "screenshot") shots.emplace_back(cmd.args[0], cmd.where);
-    for (const auto& [path, source] : shots)
-        for (const std::string& file : {path, path + ".json"})
-            if (std::filesystem::exists(file) && !o.overwrite)
-                throw InputError(source, "",
-                                 "'" + file + "' exists; pass --overwrite to replace it");
+    if (!o.reference.empty()) {
+        options.referenceFile = o.reference;
+        options.reference = image::readImage(o.reference);  // InputError naming the file
+    }
+    // Screenshots and saved graphs never replace a file silently.
+    std::vector<std::pair<std::string, std::string>> files;  // path, what asked for it
+    if (!o.screenshot.empty()) files.emplace_back(o.screenshot, "--screenshot");
+    if (!o.screenshot.empty()) files.emplace_back(o.screenshot + ".json", "--screenshot");
+    for (const auto& cmd : options.script) {
+        if (cmd.verb == "screenshot") files.emplace_back(cmd.args[0] + ".json", cmd.where);
+        if (cmd.verb == "screenshot" || cmd.verb == "saveas" || cmd.verb == "previewshot")
+            files.emplace_back(cmd.args[0], cmd.where);
+    }
+    for (const auto& [file, source] : files)
+        if (std::filesystem::exists(file) && !o.overwrite)
+            throw InputError(source, "", "'" + file + "' exists; pass --overwrite to replace it");
     options.ignoreMouse = !o.script.empty() || !o.screenshot.empty();
     // Destruction runs in reverse: the scene's GPU buffers and the window go before the device,
     // the device before glfwTerminate. Both are created only after every input was checked.
@@ -161,12 +188,15 @@ int inspectCommand(const InspectOptions& o) {
     InspectSession session(ctx, scene, desc, compile, seed, o.graph);
     uint32_t frames = 0;
     std::vector<editor::InspectorTimes> times;
+    uint64_t previewBytes = 0, windowBytes = 0;
     {
         editor::VulkanWindow window(ctx, windowWidth, windowHeight,
                                     "fovea inspect " + o.graph.graph);
         editor::Inspector inspector(session, window, options);
         frames = inspector.run();
         times = inspector.times();
+        previewBytes = inspector.previewCpuBytes();
+        windowBytes = window.bufferBytes();
     }
     if (!o.quiet) {
         using T = editor::InspectorTimes;
@@ -174,6 +204,9 @@ int inspectCommand(const InspectOptions& o) {
                   << "the first: graph " << mean(times, &T::graph) << ", preview "
                   << mean(times, &T::preview) << ", UI " << mean(times, &T::ui) << ", present "
                   << mean(times, &T::present) << "\n";
+        std::cerr << "fovea: inspect: preview memory: CPU " << previewBytes
+                  << " bytes (field copies + display bytes), host-visible buffers " << windowBytes
+                  << " bytes (preview staging + screenshot read-back)\n";
         if (!o.screenshot.empty()) std::cerr << "fovea: wrote " << o.screenshot << "\n";
     }
     checkValidation(ctx);

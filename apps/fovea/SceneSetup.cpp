@@ -204,9 +204,18 @@ std::optional<scene::ViewProbe> RunScene::probeView(const scene::FrameCamera& ca
     return scene::probeView(*mScene, *mBvh, camera);
 }
 
-scene::FrameCamera RunScene::frameCamera(uint64_t frame, uint32_t width, uint32_t height) {
+scene::CameraDesc RunScene::cameraAt(uint64_t frame) const {
+    return mPath ? mPath->at(frame).camera : scene::CameraDesc{};
+}
+
+scene::FrameCamera RunScene::frameCamera(uint64_t frame, uint32_t width, uint32_t height,
+                                         const scene::CameraDesc* pose) {
     scene::CameraSample sample =
         mPath ? mPath->at(frame) : scene::CameraSample{scene::CameraDesc{}, std::nullopt, false};
+    if (pose) {  // steered by the user: no cut from the path
+        sample.camera = *pose;
+        sample.cut = false;
+    }
     std::array<glm::vec2, scene::kMaxEyes> gaze = sample.gaze.value_or(mGaze);
     const scene::FrameCamera* previous = mPrevious && !sample.cut ? &*mPrevious : nullptr;
     scene::FrameCamera camera =

@@ -74,8 +74,12 @@ public:
     std::optional<scene::ViewProbe> probeView(const scene::FrameCamera& camera) const;
 
     // The camera of frame `frame` for an image of width x height (the whole side-by-side image
-    // when stereo); remembers it as the "previous" camera of the next call.
-    scene::FrameCamera frameCamera(uint64_t frame, uint32_t width, uint32_t height);
+    // when stereo); remembers it as the "previous" camera of the next call. `pose` replaces the
+    // path's (fovea inspect's free-fly camera).
+    scene::FrameCamera frameCamera(uint64_t frame, uint32_t width, uint32_t height,
+                                   const scene::CameraDesc* pose = nullptr);
+    // The pose the camera path (or the scene's camera) gives frame `frame`.
+    scene::CameraDesc cameraAt(uint64_t frame) const;
     bool stereo() const { return mRig.stereo; }
 
     // The scene's entry in report.json.

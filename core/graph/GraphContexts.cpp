@@ -34,7 +34,7 @@ bool GraphCompileContext::connected(const std::string& input) const {
 std::unique_ptr<gpu::ComputePipeline> GraphCompileContext::createPipeline(
     const std::string& shaderPath, const std::vector<std::pair<std::string, std::string>>& defines,
     const std::vector<std::string>& extraResources) {
-    auto pipeline = std::make_unique<gpu::ComputePipeline>(mGraph.gpu(), shaderPath, defines);
+    auto pipeline = mGraph.pipeline(shaderPath, defines);
     const PassNode& node = mPlan.nodes[mNode];
     std::vector<std::string> names = extraResources;
     for (const auto& f : node.reflection.fields()) {

@@ -7,6 +7,7 @@
 #include "core/scene/Camera.h"
 #include "core/scene/CameraGpu.h"
 #include "core/util/Error.h"
+#include "core/vk/ComputePipeline.h"
 #include "core/vk/Context.h"
 #include "core/vk/Formats.h"
 #include "core/vk/Resources.h"
@@ -68,6 +69,12 @@ RenderGraph::~RenderGraph() = default;
 void RenderGraph::build(const GraphDesc& desc, const CompileOptions& options) {
     // A graph that does not compile throws here and leaves the running graph as it was.
     CompiledPlan plan = compileGraphPlan(desc, mRegistry, options);
+    mPipelineCache.clear();  // every pipeline from source again (a shader may have changed)
+    buildPlan(desc, std::move(plan), options);
+}
+
+void RenderGraph::buildPlan(const GraphDesc& desc, CompiledPlan plan,
+                            const CompileOptions& options) {
     // Past this point the old graph is being replaced: a failure (allocation, a pass's compile)
     // leaves no half-built graph behind, but an unbuilt one that runFrame() refuses to run.
     mBuilt = false;
@@ -321,14 +328,24 @@ const gpu::Buffer& RenderGraph::dummyBuffer() {
 }
 
 const gpu::Image& RenderGraph::image(const std::string& resourceName) const {
+    // The frame index already advanced past the frame that wrote it.
+    auto lastFrame = [&](size_t resource, uint32_t delay) -> const gpu::Image& {
+        const RuntimeResource& r = *mResources[resource];
+        const uint64_t ring = r.ring.size();
+        return *r.ring[size_t((mFrame.index + ring - 1 - (delay % ring)) % ring)];
+    };
     for (size_t i = 0; i < mPlan.resources.size(); ++i)
-        if (mPlan.resources[i].name == resourceName && mPlan.resources[i].isImage) {
-            const RuntimeResource& r = *mResources[i];
-            // The frame index already advanced past the frame that wrote it.
-            const uint64_t ring = r.ring.size();
-            return *r.ring[size_t((mFrame.index + ring - 1) % ring)];
-        }
-    throw RuntimeError("no live image resource '" + resourceName + "'");
+        if (mPlan.resources[i].name == resourceName && mPlan.resources[i].isImage)
+            return lastFrame(i, 0);
+    // An input: what it read in the last frame (an edge's content, its delay included).
+    if (auto endpoint = parseEndpoint(resourceName)) {
+        const size_t node = mPlan.findNode(endpoint->pass);
+        auto in = mPlan.inputs.find({node, endpoint->field});
+        if (node != kNone && in != mPlan.inputs.end() && in->second.resource != kNone &&
+            mPlan.resources[in->second.resource].isImage)
+            return lastFrame(in->second.resource, in->second.delay);
+    }
+    throw RuntimeError("no live image resource or connected image input '" + resourceName + "'");
 }
 
 }  // namespace fovea::graph

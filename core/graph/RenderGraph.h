@@ -17,6 +17,7 @@ class Image;
 class Buffer;
 class MemoryBlock;
 class TimestampPool;
+class ComputePipeline;
 }  // namespace fovea::gpu
 
 namespace fovea::scene {
@@ -57,6 +58,27 @@ public:
     void resize(uint32_t width, uint32_t height);  // rebuild at a new size; history invalid
     void reset();  // history invalid (reset / camera cut); caches dropped
 
+    // A parameter edit without a full rebuild (RenderGraphUpdate.cpp). `desc` is compiled (every
+    // check); when its plan has the same shape as the running one (live passes, order, inputs,
+    // resources with sizes/formats/lifetimes, alias groups, barriers), every resource keeps its
+    // memory and content, every pass whose parameters did not change keeps its instance (and its
+    // pipelines, CPU state and cache key), and only changed passes are created and compiled
+    // again, their pipelines taken from the graph's pipeline cache when shader and defines are
+    // unchanged (a parameter that only reaches push constants creates no pipeline). A compile
+    // error of a changed pass leaves the running graph untouched. Any other change: build().
+    struct UpdateResult {
+        bool inPlace = false;
+        std::vector<std::string> recompiled;  // passes whose compile() ran (in place)
+        uint32_t pipelinesCreated = 0;        // driver pipeline creations during the update
+        uint32_t pipelinesReused = 0;         // pipelines shared from the cache
+    };
+    UpdateResult update(const GraphDesc& desc);
+    // Used by GraphCompileContext: a pipeline for shader + defines, shared from the cache when
+    // update() compiles a pass (build() starts with an empty cache, so edited shaders reload).
+    std::unique_ptr<gpu::ComputePipeline> pipeline(
+        const std::string& shaderPath,
+        const std::vector<std::pair<std::string, std::string>>& defines);
+
     // The scene passes see (not owned; must outlive the graph's use of it; null = none) and the
     // camera of the next frame. A camera with `cut` set resets history before the frame runs.
     void setScene(const scene::SceneGpu* scene) { mScene = scene; }
@@ -77,7 +99,8 @@ public:
     uint64_t framesSinceReset() const { return mFrame.framesSinceReset; }
     void setSeed(uint64_t seed) { mFrame.seed = seed; }
 
-    // The current content of an alive resource ("pass.field"), e.g. a marked output.
+    // The current content of an alive resource ("pass.field"), e.g. a marked output; for a
+    // connected input ("pass.input") the image that input read in the last frame (delay included).
     const gpu::Image& image(const std::string& resourceName) const;
     // Bytes actually allocated on the device (after alignment), by lifetime class.
     uint64_t allocatedTransientBytes() const { return mAllocatedTransient; }
@@ -97,6 +120,8 @@ public:
     const gpu::Buffer& dummyBuffer();  // kDummyBufferBytes of zeros
 
 private:
+    // build() after the plan compiled, keeping the pipeline cache (update() falls back to it).
+    void buildPlan(const GraphDesc& desc, CompiledPlan plan, const CompileOptions& options);
     // The part of build() after the plan compiled; on failure build() calls discardBuild().
     void install(const GraphDesc& desc, CompiledPlan plan, const CompileOptions& options);
     void discardBuild(const std::string& error);
@@ -129,6 +154,8 @@ private:
     std::unique_ptr<scene::FrameCamera> mCamera;
     std::unique_ptr<gpu::Buffer> mCameraBuffer;  // host-visible; frames run one at a time
     uint64_t mAllocatedTransient = 0, mAllocatedPersistent = 0;
+    std::map<std::string, std::unique_ptr<gpu::ComputePipeline>> mPipelineCache;
+    uint32_t mPipelinesCreated = 0, mPipelinesReused = 0;
     bool mBuilt = false;
     std::string mBuildError;  // what the last failed build() threw
 };

@@ -64,7 +64,8 @@ ComputePipeline::ComputePipeline(Context& context, const std::string& shaderPath
                                            .stageFlags = vk::ShaderStageFlagBits::eCompute});
     }
     const auto& device = context.device();
-    mSetLayout = vk::raii::DescriptorSetLayout(
+    auto objects = std::make_shared<Objects>();
+    objects->setLayout = vk::raii::DescriptorSetLayout(
         device, vk::DescriptorSetLayoutCreateInfo{
                     .flags = vk::DescriptorSetLayoutCreateFlagBits::ePushDescriptorKHR,
                     .bindingCount = static_cast<uint32_t>(layoutBindings.size()),
@@ -72,8 +73,8 @@ ComputePipeline::ComputePipeline(Context& context, const std::string& shaderPath
     vk::PushConstantRange range{.stageFlags = vk::ShaderStageFlagBits::eCompute,
                                 .offset = 0,
                                 .size = mInterface.pushConstantSize};
-    vk::DescriptorSetLayout setLayout = *mSetLayout;
-    mLayout = vk::raii::PipelineLayout(
+    vk::DescriptorSetLayout setLayout = *objects->setLayout;
+    objects->layout = vk::raii::PipelineLayout(
         device, vk::PipelineLayoutCreateInfo{
                     .setLayoutCount = 1,
                     .pSetLayouts = &setLayout,
@@ -83,21 +84,34 @@ ComputePipeline::ComputePipeline(Context& context, const std::string& shaderPath
         device, vk::ShaderModuleCreateInfo{.codeSize = spirv.size() * sizeof(uint32_t),
                                            .pCode = spirv.data()});
     try {
-        mPipeline = vk::raii::Pipeline(
+        objects->pipeline = vk::raii::Pipeline(
             device, nullptr,
             vk::ComputePipelineCreateInfo{
                 .stage =
                     vk::PipelineShaderStageCreateInfo{.stage = vk::ShaderStageFlagBits::eCompute,
                                                       .module = *module,
                                                       .pName = "main"},
-                .layout = *mLayout});
+                .layout = *objects->layout});
     } catch (const vk::SystemError& e) {
         throw RuntimeError(label() + ": pipeline creation failed: " + e.what());
     }
-    context.setObjectName(*mPipeline, mShaderPath);
-    context.setObjectName(*mLayout, mShaderPath);
+    context.setObjectName(*objects->pipeline, mShaderPath);
+    context.setObjectName(*objects->layout, mShaderPath);
+    mObjects = std::move(objects);
     mStaged.resize(mInterface.bindings.size());
     mPushData.assign(mInterface.pushConstantSize, 0);
+}
+
+ComputePipeline::ComputePipeline(const ComputePipeline& other, ShareTag)
+    : mContext(other.mContext),
+      mShaderPath(other.mShaderPath),
+      mInterface(other.mInterface),
+      mObjects(other.mObjects),
+      mStaged(other.mInterface.bindings.size()),
+      mPushData(other.mInterface.pushConstantSize, 0) {}
+
+std::unique_ptr<ComputePipeline> ComputePipeline::share() const {
+    return std::make_unique<ComputePipeline>(*this, ShareTag{});
 }
 
 size_t ComputePipeline::bindingIndex(std::string_view name) const {
@@ -221,11 +235,12 @@ void ComputePipeline::recordState(const vk::raii::CommandBuffer& cmd) {
                                    .pImageInfo = isImage ? &mStaged[i].image : nullptr,
                                    .pBufferInfo = isImage ? nullptr : &mStaged[i].buffer});
     }
-    cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *mPipeline);
+    cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *mObjects->pipeline);
     if (!writes.empty())
-        cmd.pushDescriptorSetKHR(vk::PipelineBindPoint::eCompute, *mLayout, 0, writes);
+        cmd.pushDescriptorSetKHR(vk::PipelineBindPoint::eCompute, *mObjects->layout, 0, writes);
     if (!mPushData.empty())
-        cmd.pushConstants<uint8_t>(*mLayout, vk::ShaderStageFlagBits::eCompute, 0, mPushData);
+        cmd.pushConstants<uint8_t>(*mObjects->layout, vk::ShaderStageFlagBits::eCompute, 0,
+                                   mPushData);
 }
 
 void ComputePipeline::dispatch(const vk::raii::CommandBuffer& cmd, uint32_t threadsX,

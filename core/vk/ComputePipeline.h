@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <glm/fwd.hpp>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -30,14 +31,25 @@ public:
     ComputePipeline(const ComputePipeline&) = delete;
     ComputePipeline& operator=(const ComputePipeline&) = delete;
 
+    // Another pipeline object on the same compiled Vulkan objects (no compile, no driver call),
+    // with its own staged bindings and push constants: how RenderGraph reuses pipelines when a
+    // parameter edit re-runs a pass's compile() with unchanged shaders and defines.
+    std::unique_ptr<ComputePipeline> share() const;
+
+private:
+    struct ShareTag {};
+
+public:
+    ComputePipeline(const ComputePipeline& other, ShareTag);  // for share() only (private tag)
+
     const ShaderInterface& interface() const { return mInterface; }
     const std::string& shaderPath() const { return mShaderPath; }
     bool hasBinding(std::string_view name) const { return mInterface.findBinding(name) != nullptr; }
     bool hasPushConstant(std::string_view member) const {
         return mInterface.findPushConstant(member) != nullptr;
     }
-    vk::Pipeline pipeline() const { return *mPipeline; }
-    vk::PipelineLayout layout() const { return *mLayout; }
+    vk::Pipeline pipeline() const { return *mObjects->pipeline; }
+    vk::PipelineLayout layout() const { return *mObjects->layout; }
 
     // Stage a resource for the next dispatch. Throws RuntimeError for an unknown name (with
     // did-you-mean), the wrong kind (Image vs Buffer), a missing usage flag, or a storage image
@@ -107,12 +119,15 @@ private:
     ComputePipeline& bindImage(std::string_view name, const Image& image, bool nearest);
     std::string label() const { return "shader '" + mShaderPath + "'"; }
 
+    struct Objects {  // immutable once created; shared by share()
+        vk::raii::DescriptorSetLayout setLayout = nullptr;
+        vk::raii::PipelineLayout layout = nullptr;
+        vk::raii::Pipeline pipeline = nullptr;
+    };
     const Context& mContext;
     std::string mShaderPath;
     ShaderInterface mInterface;
-    vk::raii::DescriptorSetLayout mSetLayout = nullptr;
-    vk::raii::PipelineLayout mLayout = nullptr;
-    vk::raii::Pipeline mPipeline = nullptr;
+    std::shared_ptr<const Objects> mObjects;
     std::vector<Staged> mStaged;  // parallel to mInterface.bindings
     std::vector<uint8_t> mPushData;
 };
