@@ -24,6 +24,7 @@
 #include "core/vk/Resources.h"
 #include "passes/ATrousNH/ATrousNHPass.h"
 #include "tests/graph/ATrousReference.h"
+#include "tests/graph/ATrousTestInputs.h"
 #include "tests/passes/FeedPass.h"
 #include "tests/unit/GpuTestFixture.h"
 
@@ -35,61 +36,17 @@ using fovea::passes::buildATrousSchedule;
 
 namespace {
 
-// Feed (tests/passes/FeedPass.h) declares the denoiser's inputs; the test uploads their content.
 const PassRegistry& registry() {
-    // Normals in GBuffer's format.
-    static PassRegistry r = test::feedRegistry<passes::ATrousNHPass>(
-        "ATrousNH", {{"color", vk::Format::eR32G32B32A32Sfloat},
-                     {"normal", vk::Format::eR16G16B16A16Sfloat},
-                     {"position", vk::Format::eR32G32B32A32Sfloat},
-                     {"mask", vk::Format::eR32Uint}});
-    return r;
+    return test::atrousFeedRegistry();
 }
 
-struct Inputs {
-    int width = 0, height = 0;
-    std::vector<float> color, normal, position;
-    std::vector<uint32_t> mask;
-};
+using Inputs = test::ATrousInputs;
 
 // Concentric layers around each eye's centre (radii 0.2 / 0.4 of the eye height, like
-// FoveationMask), sampled with probability 1 / pMiddle / pOuter; random colours, unit normals
-// from a few planes and positions with jumps, so all three weights matter.
+// FoveationMask), sampled with probability 1 / pMiddle / pOuter.
 Inputs randomInputs(int width, int height, int eyes, float pMiddle, float pOuter, uint32_t seed) {
-    Inputs in;
-    in.width = width;
-    in.height = height;
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    const size_t n = size_t(width) * height;
-    in.color.resize(n * 4);
-    in.normal.resize(n * 4);
-    in.position.resize(n * 4);
-    in.mask.resize(n);
-    const int eyeWidth = width / eyes;
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            const size_t i = size_t(y) * width + x;
-            const int eye = std::min(x / eyeWidth, eyes - 1);
-            float cx = eye * eyeWidth + 0.5f * eyeWidth, cy = 0.5f * height;
-            float r = std::hypot(x + 0.5f - cx, y + 0.5f - cy) / float(height);
-            uint32_t layer = r < 0.2f ? 0u : (r < 0.4f ? 1u : 2u);
-            float p = layer == 0 ? 1.0f : (layer == 1 ? pMiddle : pOuter);
-            bool sampled = u(rng) < p;
-            in.mask[i] = (layer << 1) | (sampled ? (1u | (2u << 16)) : 0u);
-            for (int c = 0; c < 3; ++c) in.color[i * 4 + c] = sampled ? 2.0f * u(rng) : 0.0f;
-            in.color[i * 4 + 3] = sampled ? 2.0f : 0.0f;
-            int plane = (x / 7 + y / 5) % 3;
-            float nrm[3] = {plane == 0 ? 1.0f : 0.0f, plane == 1 ? 1.0f : 0.0f,
-                            plane == 2 ? 1.0f : 0.0f};
-            for (int c = 0; c < 3; ++c) in.normal[i * 4 + c] = nrm[c];
-            in.normal[i * 4 + 3] = 1.0f;
-            in.position[i * 4 + 0] = 0.05f * x + (plane == 1 ? 1.0f : 0.0f);
-            in.position[i * 4 + 1] = 0.05f * y;
-            in.position[i * 4 + 2] = 0.3f * u(rng);
-            in.position[i * 4 + 3] = 1.0f;
-        }
-    return in;
+    return test::layeredATrousInputs(width, height, eyes, {0.5f, 0.5f, 0.2f, 0.4f, pMiddle, pOuter},
+                                     seed);
 }
 
 class ATrousNHTest : public GpuTest {

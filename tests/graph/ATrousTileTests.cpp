@@ -25,6 +25,7 @@
 #include "core/vk/Resources.h"
 #include "passes/ATrousNH/ATrousNHPass.h"
 #include "passes/RegisterPasses.h"
+#include "tests/graph/ATrousTestInputs.h"
 #include "tests/passes/FeedPass.h"
 #include "tests/unit/GpuTestFixture.h"
 
@@ -39,56 +40,17 @@ namespace {
 
 constexpr int kTile = 8;
 
-const PassRegistry& feedRegistry() {
-    static PassRegistry r =
-        test::feedRegistry<ATrousNHPass>("ATrousNH", {{"color", vk::Format::eR32G32B32A32Sfloat},
-                                                      {"normal", vk::Format::eR16G16B16A16Sfloat},
-                                                      {"position", vk::Format::eR32G32B32A32Sfloat},
-                                                      {"mask", vk::Format::eR32Uint}});
-    return r;
-}
+using Inputs = test::ATrousInputs;
 
-struct Inputs {
-    int width = 0, height = 0;
-    std::vector<float> color, normal, position;
-    std::vector<uint32_t> mask;
-};
+const PassRegistry& feedRegistry() {
+    return test::atrousFeedRegistry();
+}
 
 // Concentric layers (radii 0.15 / 0.3 of the height) around an off-centre point per eye, so
 // tiles hold one, two or three layers; sparse middle and outer sampling (holes to fill).
 Inputs randomInputs(int width, int height, int eyes, uint32_t seed) {
-    Inputs in;
-    in.width = width;
-    in.height = height;
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    const size_t n = size_t(width) * height;
-    in.color.resize(n * 4);
-    in.normal.resize(n * 4);
-    in.position.resize(n * 4);
-    in.mask.resize(n);
-    const int eyeWidth = width / eyes;
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            const size_t i = size_t(y) * width + x;
-            const int eye = std::min(x / eyeWidth, eyes - 1);
-            float cx = eye * eyeWidth + 0.4f * eyeWidth, cy = 0.45f * height;
-            float r = std::hypot(x + 0.5f - cx, y + 0.5f - cy) / float(height);
-            uint32_t layer = r < 0.15f ? 0u : (r < 0.3f ? 1u : 2u);
-            float p = layer == 0 ? 1.0f : (layer == 1 ? 0.7f : 0.3f);
-            bool sampled = u(rng) < p;
-            in.mask[i] = (layer << 1) | (sampled ? (1u | (2u << 16)) : 0u);
-            for (int c = 0; c < 3; ++c) in.color[i * 4 + c] = sampled ? 2.0f * u(rng) : 0.0f;
-            in.color[i * 4 + 3] = sampled ? 2.0f : 0.0f;
-            int plane = (x / 7 + y / 5) % 3;
-            for (int c = 0; c < 3; ++c) in.normal[i * 4 + c] = plane == c ? 1.0f : 0.0f;
-            in.normal[i * 4 + 3] = 1.0f;
-            in.position[i * 4 + 0] = 0.05f * x + (plane == 1 ? 1.0f : 0.0f);
-            in.position[i * 4 + 1] = 0.05f * y;
-            in.position[i * 4 + 2] = 0.3f * u(rng);
-            in.position[i * 4 + 3] = 1.0f;
-        }
-    return in;
+    return test::layeredATrousInputs(width, height, eyes, {0.4f, 0.45f, 0.15f, 0.3f, 0.7f, 0.3f},
+                                     seed);
 }
 
 class ATrousTileTest : public GpuTest {
