@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "core/util/Error.h"
 
@@ -46,8 +47,11 @@ void writePng(const std::filesystem::path& path, const ImageRGBA& image, PngEnco
     writeWith(path, image.width, image.height, OIIO::TypeDesc::UINT8, bytes.data());
 }
 
-ImageRGBA readImage(const std::filesystem::path& path) {
-    // Keep straight alpha as stored (OIIO would premultiply a PNG's colour by its alpha).
+namespace {
+
+// Opened for reading with straight alpha kept as stored (OIIO would premultiply a PNG's colour by
+// its alpha); an unreadable file or one without pixels is an InputError naming it.
+std::unique_ptr<OIIO::ImageInput> openImage(const std::filesystem::path& path) {
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
     auto in = OIIO::ImageInput::open(path.string(), &config);
@@ -55,6 +59,14 @@ ImageRGBA readImage(const std::filesystem::path& path) {
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
         throw InputError(path.string(), "", "image has no pixels");
+    return in;
+}
+
+}  // namespace
+
+ImageRGBA readImage(const std::filesystem::path& path) {
+    auto in = openImage(path);
+    const OIIO::ImageSpec& spec = in->spec();
     ImageRGBA image;
     image.width = uint32_t(spec.width);
     image.height = uint32_t(spec.height);
@@ -78,13 +90,8 @@ ImageRGBA readImageChannels(const std::filesystem::path& path,
     if (channels.empty()) return readImage(path);
     if (channels.size() > 4)
         throw InputError(path.string(), "", "at most 4 channels can be selected");
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    auto in = OIIO::ImageInput::open(path.string(), &config);
-    if (!in) throw InputError(path.string(), "", "cannot read image: " + OIIO::geterror());
+    auto in = openImage(path);
     const OIIO::ImageSpec& spec = in->spec();
-    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-        throw InputError(path.string(), "", "image has no pixels");
     std::vector<int> index;
     for (const std::string& name : channels) {
         int found = spec.channelindex(name);
