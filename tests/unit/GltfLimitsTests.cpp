@@ -14,24 +14,14 @@
 
 #include "core/scene/GltfLoader.h"
 #include "core/util/Error.h"
+#include "tests/unit/Base64.h"
 
 namespace fs = std::filesystem;
 using namespace fovea;
 
 namespace {
 
-std::string base64(const std::vector<uint8_t>& bytes) {
-    static const char* kAlphabet =
-        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    for (size_t i = 0; i < bytes.size(); i += 3) {
-        const size_t n = std::min<size_t>(3, bytes.size() - i);
-        uint32_t word = 0;
-        for (size_t k = 0; k < 3; ++k) word = word << 8 | (k < n ? bytes[i + k] : 0u);
-        for (size_t k = 0; k < 4; ++k) out += k <= n ? kAlphabet[(word >> (18 - 6 * k)) & 63] : '=';
-    }
-    return out;
-}
+using test::base64;
 
 std::string number(double v) {
     char text[40];

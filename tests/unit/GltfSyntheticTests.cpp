@@ -19,6 +19,7 @@
 #include "core/scene/GltfLoader.h"
 #include "core/scene/SceneLoader.h"
 #include "core/util/Error.h"
+#include "tests/unit/Base64.h"
 #include "tests/unit/SceneLoadTestUtil.h"
 
 namespace fs = std::filesystem;
@@ -34,18 +35,7 @@ namespace {
 // sparse accessor without buffer view, a mirrored node, a hierarchy, a zero normal, generated flat
 // normals, a LINES primitive, 16-bit and grey PNGs, emissive strength, a camera and a spot light.
 
-std::string base64(const std::vector<uint8_t>& bytes) {
-    static const char* kAlphabet =
-        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    for (size_t i = 0; i < bytes.size(); i += 3) {
-        size_t n = std::min<size_t>(3, bytes.size() - i);  // n bytes give n + 1 characters
-        uint32_t word = 0;
-        for (size_t k = 0; k < 3; ++k) word = word << 8 | (k < n ? bytes[i + k] : 0u);
-        for (size_t k = 0; k < 4; ++k) out += k <= n ? kAlphabet[(word >> (18 - 6 * k)) & 63] : '=';
-    }
-    return out;
-}
+using test::base64;
 
 template <typename T>
 void put(std::vector<uint8_t>& out, T value) {
