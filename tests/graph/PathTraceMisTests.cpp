@@ -27,6 +27,7 @@
 #include "core/vk/Resources.h"
 #include "passes/PathTrace/PathTracePass.h"
 #include "passes/RegisterPasses.h"
+#include "tests/graph/SceneGraphRig.h"
 #include "tests/unit/GpuTestFixture.h"
 
 using namespace fovea;
@@ -36,11 +37,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct LoadedScene {
-    scene::Scene scene;
-    std::unique_ptr<scene::SceneGpu> gpu;
-    scene::CameraDesc camera;
-};
+using test::LoadedScene;
 
 // "builtin:<name>" or a glTF path relative to the repository root.
 scene::Scene loadNamed(const std::string& name) {
@@ -75,16 +72,7 @@ protected:
     static void SetUpTestSuite() { registerBuiltinPasses(); }
 
     static LoadedScene& sceneNamed(const std::string& name) {
-        static std::map<std::string, std::unique_ptr<LoadedScene>> scenes;
-        auto& slot = scenes[name];
-        if (!slot) {
-            slot = std::make_unique<LoadedScene>();
-            slot->scene = loadNamed(name);
-            slot->gpu = std::make_unique<scene::SceneGpu>(ctx(), slot->scene);
-            slot->camera = slot->scene.cameras.empty() ? slot->scene.defaultCamera()
-                                                       : slot->scene.cameras.front();
-        }
-        return *slot;
+        return test::loadedScene(name, loadNamed);
     }
 
     // GBuffer primaries (pixel centres, the configuration every denoiser graph uses) + PathTrace.
@@ -97,16 +85,7 @@ protected:
             params +
             R"( } ], "edges": [ { "from": "gb.visibility", "to": "pt.visibility" } ], )"
             R"("outputs": [ "pt.radiance" ] })";
-        LoadedScene& s = sceneNamed(sceneName);
-        CompileOptions o;
-        o.width = width;
-        o.height = height;
-        o.sceneFeatures = s.gpu->features();
-        auto g = std::make_unique<RenderGraph>(ctx(), passRegistry());
-        g->setScene(s.gpu.get());
-        g->build(parseGraphText(text, "mis_test"), o);
-        g->setSeed(seed);
-        return g;
+        return test::buildSceneGraph(sceneNamed(sceneName), text, "mis_test", seed, width, height);
     }
 
     // Runs `frames` frames (new noise each: the frame index is hashed) and collects moments.

@@ -26,6 +26,7 @@
 #include "core/vk/Resources.h"
 #include "passes/PathTrace/PathTracePass.h"
 #include "passes/RegisterPasses.h"
+#include "tests/graph/SceneGraphRig.h"
 #include "tests/unit/GpuTestFixture.h"
 
 using namespace fovea;
@@ -37,11 +38,7 @@ namespace fs = std::filesystem;
 
 constexpr uint32_t kSize = 32;
 
-struct LoadedScene {
-    scene::Scene scene;
-    std::unique_ptr<scene::SceneGpu> gpu;
-    scene::CameraDesc camera;
-};
+using test::LoadedScene;
 
 // A textured Khronos sample with a point light added (the file has none) so textured surfaces
 // are lit and shadow rays run.
@@ -104,18 +101,11 @@ protected:
 
     // Loaded once per process; created after (so destroyed before) the shared GPU context.
     static LoadedScene& sceneNamed(const std::string& name) {
-        static std::map<std::string, std::unique_ptr<LoadedScene>> scenes;
-        auto& slot = scenes[name];
-        if (!slot) {
-            slot = std::make_unique<LoadedScene>();
-            slot->scene = name == "textured" ? texturedBox()
-                          : name == "flight" ? flightHelmet()
-                                             : scene::loadBuiltinScene(name);
-            slot->gpu = std::make_unique<scene::SceneGpu>(ctx(), slot->scene);
-            slot->camera = slot->scene.cameras.empty() ? slot->scene.defaultCamera()
-                                                       : slot->scene.cameras.front();
-        }
-        return *slot;
+        return test::loadedScene(name, [](const std::string& n) {
+            return n == "textured" ? texturedBox()
+                   : n == "flight" ? flightHelmet()
+                                   : scene::loadBuiltinScene(n);
+        });
     }
 
     // One PathTrace pass "pt" with `params`, optionally fed by extra passes and edges.
@@ -131,16 +121,8 @@ protected:
     static std::unique_ptr<RenderGraph> makeGraph(const std::string& sceneName,
                                                   const std::string& text, uint64_t seed = 1,
                                                   uint32_t width = kSize, uint32_t height = kSize) {
-        LoadedScene& s = sceneNamed(sceneName);
-        CompileOptions o;
-        o.width = width;
-        o.height = height;
-        o.sceneFeatures = s.gpu->features();
-        auto g = std::make_unique<RenderGraph>(ctx(), passRegistry());
-        g->setScene(s.gpu.get());
-        g->build(parseGraphText(text, "pathtrace_test"), o);
-        g->setSeed(seed);
-        return g;
+        return test::buildSceneGraph(sceneNamed(sceneName), text, "pathtrace_test", seed, width,
+                                     height);
     }
 
     // Runs `frames` frames with the scene's camera (static, no jitter).
