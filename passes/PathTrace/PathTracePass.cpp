@@ -1,5 +1,7 @@
 #include "passes/PathTrace/PathTracePass.h"
 
+#include <algorithm>
+
 #include "core/sampling/SampleLayout.h"
 #include "core/scene/SceneGpu.h"
 #include "core/util/Error.h"
@@ -11,6 +13,8 @@ namespace fovea::passes {
 
 namespace {
 const std::vector<std::string> kBrdfs = {"lambert", "ggx"};
+// Order = the shader's PATHTRACE_EMITTER_SAMPLING values.
+const std::vector<std::string> kEmitterSampling = {"mis", "light", "brdf"};
 constexpr int kMaxSpp = 1024;
 constexpr int kMaxBounceLimit = 16;
 
@@ -47,6 +51,13 @@ void PathTracePass::params(graph::ParamVisitor& v) {
           "with that vertex's shadow ray by MIS (Veach 1997 §9.2, power heuristic): bounds the "
           "noise next to lights; false = the strict P2 §3.1 ray budget (the last shadow ray "
           "alone, full weight)");
+    v.add("emitterSampling", mEmitterSampling, "mis",
+          "how light from emissive triangles is estimated at each path vertex: mis = shadow ray "
+          "and BRDF ray combined by the power heuristic (Veach 1997 §9.2); light = shadow rays "
+          "only; brdf = BRDF rays only (the last vertex traces one too). light and brdf are the "
+          "two unbiased single-strategy estimators MIS combines (tests, variance studies); "
+          "lastBounceMis applies to mis only",
+          kEmitterSampling);
     v.add("stratifyLight", mStratifyLight, false,
           "the primary vertex's light samples of one pixel form a randomly shifted "
           "low-discrepancy set (R-sequence) instead of independent points: unbiased, less noise "
@@ -97,6 +108,12 @@ void PathTracePass::compile(graph::CompileContext& ctx) {
     defines.emplace_back("PATHTRACE_COUNT_RAYS", mCountRays ? "1" : "0");
     defines.emplace_back("PATHTRACE_LAST_MIS", mLastBounceMis ? "1" : "0");
     defines.emplace_back("PATHTRACE_STRATIFY_LIGHT", mStratifyLight ? "1" : "0");
+    const auto strategy =
+        std::find(kEmitterSampling.begin(), kEmitterSampling.end(), mEmitterSampling);
+    defines.emplace_back(
+        "PATHTRACE_EMITTER_SAMPLING",
+        std::to_string(strategy == kEmitterSampling.end() ? 0
+                                                          : strategy - kEmitterSampling.begin()));
     mUseVisibility = ctx.connected("visibility");
     mUseAlbedo = ctx.connected("albedo");
     mUseLayout = ctx.connected(sampling::kSampleLayoutField);
@@ -107,6 +124,7 @@ void PathTracePass::compile(graph::CompileContext& ctx) {
                ",bounces=" + std::to_string(mMaxBounces) +
                ",primary=" + (mUseVisibility ? "gbuffer" : "own") +
                (mUseLayout ? ",layout" : ",spp=" + std::to_string(mSpp)) +
+               (mEmitterSampling != "mis" ? "," + mEmitterSampling + "-only" : "") +
                (mLastBounceMis ? ",last-mis" : "") + (mStratifyLight ? ",stratified" : "") +
                (mCountRays ? ",count-rays" : "");
     mTrace = ctx.createPipeline("pathtrace/pathtrace.comp", defines,

@@ -51,6 +51,7 @@ private:
     bool mCountRays = false;
     bool mLastBounceMis = kLastBounceMisDefault;
     bool mStratifyLight = false;
+    std::string mEmitterSampling = "mis";
 
     std::string mVariant;
     bool mUseVisibility = false, mUseAlbedo = false, mUseLayout = false;

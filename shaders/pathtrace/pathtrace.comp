@@ -39,6 +39,23 @@ layout(rgba16f) uniform writeonly image2D indirect;
 #ifndef PATHTRACE_LAST_MIS
 #define PATHTRACE_LAST_MIS 0
 #endif
+#ifndef PATHTRACE_EMITTER_SAMPLING
+#define PATHTRACE_EMITTER_SAMPLING 0
+#endif
+// Parameter emitterSampling: how light reaching a vertex from an area emitter is estimated.
+// 0 mis: shadow ray and BRDF ray, power heuristic (the default, Veach 1997 §9.2);
+// 1 light: shadow rays only (a BRDF ray that finds an emitter adds nothing);
+// 2 brdf: BRDF rays only (no shadow rays to area lights; the last vertex traces its BRDF ray).
+// 1 and 2 are the two single-strategy estimators MIS combines: each is unbiased on its own, so
+// all three must converge to the same image (tests/graph/PathTraceMisTests.cpp).
+// Punctual lights are reached by shadow rays only and keep full weight in every mode.
+#if PATHTRACE_EMITTER_SAMPLING == 2
+#define PATHTRACE_LAST_RAY 1
+#elif PATHTRACE_EMITTER_SAMPLING == 1
+#define PATHTRACE_LAST_RAY 0
+#else
+#define PATHTRACE_LAST_RAY PATHTRACE_LAST_MIS
+#endif
 #if PATHTRACE_COUNT_RAYS
 // Benchmark builds (parameter countRays): rays traced, by kind: 0 primary (own camera rays),
 // 1 shadow rays from the primary hit, 2 indirect rays, 3 shadow rays from indirect hits, 4 the
@@ -122,6 +139,29 @@ float powerHeuristic(float a, float b) {
     return d > 0.0 ? a2 / d : 0.0;
 }
 
+// Weight of a shadow-ray sample of an area light; `brdfRayFollows`: this vertex also traces a
+// BRDF ray that could find the same emitter.
+float lightSampleWeight(float lightPdf, float brdfPdfValue, bool brdfRayFollows) {
+#if PATHTRACE_EMITTER_SAMPLING == 1
+    return 1.0;
+#elif PATHTRACE_EMITTER_SAMPLING == 2
+    return 0.0;
+#else
+    return brdfRayFollows ? powerHeuristic(lightPdf, brdfPdfValue) : 1.0;
+#endif
+}
+
+// Weight of emission found by a BRDF-sampled ray (solid-angle pdfs of both strategies).
+float brdfHitWeight(float brdfPdfValue, float lightPdf) {
+#if PATHTRACE_EMITTER_SAMPLING == 1
+    return 0.0;
+#elif PATHTRACE_EMITTER_SAMPLING == 2
+    return 1.0;
+#else
+    return powerHeuristic(brdfPdfValue, lightPdf);
+#endif
+}
+
 vec3 clampContribution(vec3 c) {
     if (pc.clampIndirect <= 0.0) return c;
     float m = maxComponent(c);
@@ -181,10 +221,10 @@ vec3 nextEvent(Vertex v, uint vertex, bool last) {
     if (cosS <= 0.0 || dot(v.ng, ls.direction) <= 0.0) return vec3(0.0);
     vec3 f = brdfEval(v.brdf, v.ns, v.wo, ls.direction);
     if (maxComponent(f) <= 0.0) return vec3(0.0);
-    // `last` is false for every vertex when the last one also traces a BRDF ray (LAST_MIS).
-    float w = (ls.isDelta || last)
-                  ? 1.0
-                  : powerHeuristic(ls.pdf, brdfPdf(v.brdf, v.ns, v.wo, ls.direction));
+    // `last` is false for every vertex when the last one also traces a BRDF ray (LAST_RAY).
+    float w = ls.isDelta ? 1.0
+                         : lightSampleWeight(ls.pdf, brdfPdf(v.brdf, v.ns, v.wo, ls.direction),
+                                             !last);
     if (w <= 0.0) return vec3(0.0);
     COUNT_RAY(vertex == 1u ? 1 : 3);
     if (bvhOccluded(p, ls.direction, 0.0, ls.distance * kShadowShorten)) return vec3(0.0);
@@ -235,7 +275,7 @@ PathResult tracePath(uvec2 pixel, bool haveVisibility, uvec4 vis) {
     for (int depth = 0; depth <= bounces; ++depth) {
         uint vertex = uint(depth) + 1u;
         bool last = depth == bounces;
-#if PATHTRACE_LAST_MIS
+#if PATHTRACE_LAST_RAY
         // The last vertex traces a BRDF ray too, so its shadow ray is MIS-weighted as well.
         vec3 ne = throughput * nextEvent(v, vertex, false);
 #else
@@ -245,7 +285,7 @@ PathResult tracePath(uvec2 pixel, bool haveVisibility, uvec4 vis) {
             r.direct += ne;
         else
             r.indirect += clampContribution(ne);
-#if !PATHTRACE_LAST_MIS
+#if !PATHTRACE_LAST_RAY
         if (last) break;
 #endif
 
@@ -259,7 +299,7 @@ PathResult tracePath(uvec2 pixel, bool haveVisibility, uvec4 vis) {
         if (maxComponent(throughput) <= 0.0) break;
         vec3 p = bvhOffsetRay(v.position, v.ng);
         BvhHit hit;
-#if PATHTRACE_LAST_MIS
+#if PATHTRACE_LAST_RAY
         COUNT_RAY(last ? 4 : 2);
         if (!bvhClosestHit(p, wi, 0.0, kInfinity, hit)) break;
         if (depth == 0 && !last) r.hitT = hit.t;  // hit_distance: the first *indirect* ray
@@ -270,7 +310,7 @@ PathResult tracePath(uvec2 pixel, bool haveVisibility, uvec4 vis) {
             vec3 le = sceneEmission(hs.material, hs.uv, dot(hs.geometricNormal, wi) < 0.0);
             if (maxComponent(le) > 0.0) {
                 float lightPdf = sceneEmitterPdf(hit.triangle, p, hs.position);
-                vec3 e = throughput * le * powerHeuristic(brdfPdfValue, lightPdf);
+                vec3 e = throughput * le * brdfHitWeight(brdfPdfValue, lightPdf);
                 if (depth == 0)
                     r.direct += e;
                 else
@@ -287,7 +327,7 @@ PathResult tracePath(uvec2 pixel, bool haveVisibility, uvec4 vis) {
         if (maxComponent(next.emitted) > 0.0) {
             // The light-sampling strategy could have produced this direction too (MIS).
             float lightPdf = sceneEmitterPdf(hit.triangle, p, next.position);
-            vec3 e = throughput * next.emitted * powerHeuristic(brdfPdfValue, lightPdf);
+            vec3 e = throughput * next.emitted * brdfHitWeight(brdfPdfValue, lightPdf);
             if (depth == 0)
                 r.direct += e;
             else
