@@ -15,6 +15,7 @@ namespace {
 const std::vector<std::string> kBrdfs = {"lambert", "ggx"};
 // Order = the shader's PATHTRACE_EMITTER_SAMPLING values.
 const std::vector<std::string> kEmitterSampling = {"mis", "light", "brdf"};
+const std::vector<std::string> kLightSampling = {"area", "solidAngle"};
 constexpr int kMaxSpp = 1024;
 constexpr int kMaxBounceLimit = 16;
 
@@ -58,6 +59,12 @@ void PathTracePass::params(graph::ParamVisitor& v) {
           "two unbiased single-strategy estimators MIS combines (tests, variance studies); "
           "lastBounceMis applies to mis only",
           kEmitterSampling);
+    v.add("lightSampling", mLightSampling, "area",
+          "how a shadow ray's point on an emissive triangle is drawn: area = uniform on the "
+          "triangle (pdf d^2 / (A cos), heavy-tailed next to the light); solidAngle = uniform "
+          "in the solid angle the triangle subtends (Arvo 1995 spherical triangles; area "
+          "sampling below 3e-4 sr or above 6 sr)",
+          kLightSampling);
     v.add("stratifyLight", mStratifyLight, false,
           "the primary vertex's light samples of one pixel form a randomly shifted "
           "low-discrepancy set (R-sequence) instead of independent points: unbiased, less noise "
@@ -114,6 +121,7 @@ void PathTracePass::compile(graph::CompileContext& ctx) {
         "PATHTRACE_EMITTER_SAMPLING",
         std::to_string(strategy == kEmitterSampling.end() ? 0
                                                           : strategy - kEmitterSampling.begin()));
+    defines.emplace_back("SCENE_LIGHT_SOLID_ANGLE", mLightSampling == "solidAngle" ? "1" : "0");
     mUseVisibility = ctx.connected("visibility");
     mUseAlbedo = ctx.connected("albedo");
     mUseLayout = ctx.connected(sampling::kSampleLayoutField);
@@ -125,6 +133,7 @@ void PathTracePass::compile(graph::CompileContext& ctx) {
                ",primary=" + (mUseVisibility ? "gbuffer" : "own") +
                (mUseLayout ? ",layout" : ",spp=" + std::to_string(mSpp)) +
                (mEmitterSampling != "mis" ? "," + mEmitterSampling + "-only" : "") +
+               (mLightSampling != "area" ? ",light-" + mLightSampling : "") +
                (mLastBounceMis ? ",last-mis" : "") + (mStratifyLight ? ",stratified" : "") +
                (mCountRays ? ",count-rays" : "");
     mTrace = ctx.createPipeline("pathtrace/pathtrace.comp", defines,

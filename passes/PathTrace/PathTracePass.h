@@ -52,6 +52,7 @@ private:
     bool mLastBounceMis = kLastBounceMisDefault;
     bool mStratifyLight = false;
     std::string mEmitterSampling = "mis";
+    std::string mLightSampling = "area";
 
     std::string mVariant;
     bool mUseVisibility = false, mUseAlbedo = false, mUseLayout = false;

@@ -15,6 +15,87 @@
 
 const float kSceneInfiniteDistance = 1e30;  // shadow-ray tMax of directional lights
 
+// SCENE_LIGHT_SOLID_ANGLE 1 (PathTrace's lightSampling = solidAngle): a sampled emissive
+// triangle yields a direction uniform in the solid angle it subtends (Arvo 1995) instead of a
+// uniform point on its area, so the d^2 / (A cos) factor of area sampling, heavy-tailed next to
+// the light, never enters the estimate. Triangles subtending less than kSceneMinSolidAngle
+// (float precision of the spherical excess) or more than kSceneMaxSolidAngle (close to a
+// hemisphere, where Arvo's inversion degenerates) keep area sampling; sceneSampleLight and
+// sceneEmitterPdf make the same choice from the same solid angle, so MIS stays consistent.
+#ifndef SCENE_LIGHT_SOLID_ANGLE
+#define SCENE_LIGHT_SOLID_ANGLE 0
+#endif
+#if SCENE_LIGHT_SOLID_ANGLE
+const float kSceneMinSolidAngle = 3e-4;
+const float kSceneMaxSolidAngle = 6.0;
+const float kScenePi = 3.14159265358979;
+
+// Solid angle of the triangle with corners a, b, c relative to the viewpoint (Van Oosterom and
+// Strackee 1983): tan(omega / 2) = |a.(b x c)| / (|a||b||c| + (a.b)|c| + (a.c)|b| + (b.c)|a|).
+// atan(y, x) takes any sign of the denominator (omega > pi); it is undefined for 0 / 0, so a
+// triangle seen edge-on or from one of its corners (numerator 0) returns 0 first.
+float sceneTriangleSolidAngle(vec3 a, vec3 b, vec3 c) {
+    float la = length(a), lb = length(b), lc = length(c);
+    float numerator = abs(dot(a, cross(b, c)));
+    if (!(numerator > 0.0)) return 0.0;
+    float denominator = la * lb * lc + dot(a, b) * lc + dot(a, c) * lb + dot(b, c) * la;
+    return 2.0 * atan(numerator, denominator);
+}
+
+bool sceneUseSolidAngle(float omega) {
+    return omega >= kSceneMinSolidAngle && omega <= kSceneMaxSolidAngle;
+}
+
+// Angle between unit vectors, accurate near 0 and pi too (acos of the dot product loses half
+// the digits there): 2 asin of half the chord. asin's argument is <= 1 up to rounding: clamped.
+float sceneAngleBetween(vec3 p, vec3 q) {
+    return dot(p, q) < 0.0 ? kScenePi - 2.0 * asin(min(1.0, 0.5 * length(p + q)))
+                           : 2.0 * asin(min(1.0, 0.5 * length(p - q)));
+}
+
+// Direction uniform in the spherical triangle (A, B, C) of unit vectors with solid angle `area`
+// (Arvo 1995, "Stratified Sampling of Spherical Triangles", Fig. 2): u.x picks the sub-triangle
+// A B C' of area u.x * area, which fixes C' on the arc AC; u.y the point on the arc B C'. The
+// area comes from sceneTriangleSolidAngle, not from the spherical excess alpha + beta + gamma -
+// pi: for a sliver seen almost edge-on (the ceiling next to a light) that difference cancels to
+// a few digits, and a too small area leaves part of the triangle unsampled (a bias, measured on
+// the Bevy box). False for a degenerate triangle.
+bool sceneSampleSphericalTriangle(vec3 A, vec3 B, vec3 C, float area, vec2 u, out vec3 w) {
+    w = A;
+    vec3 nAB = cross(A, B), nBC = cross(B, C), nCA = cross(C, A);
+    float lAB = length(nAB), lBC = length(nBC), lCA = length(nCA);
+    if (!(lAB > 0.0 && lBC > 0.0 && lCA > 0.0)) return false;
+    nAB /= lAB;  // lengths > 0 checked above
+    nBC /= lBC;
+    nCA /= lCA;
+    // Interior angles: between the planes of the two edges meeting at each corner.
+    float alpha = sceneAngleBetween(nAB, -nCA);
+    if (!(area > 0.0)) return false;
+    float areaSub = u.x * area;
+    float s = sin(areaSub - alpha), t = cos(areaSub - alpha);
+    float cosAlpha = cos(alpha), sinAlpha = sin(alpha);
+    float uu = t - cosAlpha;
+    float vv = s + sinAlpha * dot(A, B);  // dot(A, B) = cos of the arc c opposite C
+    float denominator = (vv * s + uu * t) * sinAlpha;
+    // Zero only on a measure-zero set of u.x: drop that sample (it would divide by 0).
+    if (denominator == 0.0) return false;
+    // q = cos of the arc A C'; C' lies on the arc A C, so q is in [A.C, 1]. Float rounding in
+    // the formula can put it slightly past C (a direction just outside the triangle): clamped.
+    float q = clamp(((vv * t - uu * s) * cosAlpha - vv) / denominator, dot(A, C), 1.0);
+    vec3 cPerp = C - dot(C, A) * A;
+    float cPerpLen = length(cPerp);
+    if (!(cPerpLen > 0.0)) return false;  // C parallel to A: the arc AC has no direction
+    vec3 cPrime = q * A + sqrt(max(0.0, 1.0 - q * q)) * (cPerp / cPerpLen);
+    float z = 1.0 - u.y * (1.0 - dot(cPrime, B));
+    vec3 pPerp = cPrime - dot(cPrime, B) * B;
+    float pPerpLen = length(pPerp);
+    // C' = B (the arc B C' has zero length): every u.y gives B itself.
+    w = pPerpLen > 0.0 ? z * B + sqrt(max(0.0, 1.0 - z * z)) * (pPerp / pPerpLen) : B;
+    w = normalize(w);  // unit up to rounding; never zero (z^2 + (1 - z^2) = 1)
+    return true;
+}
+#endif
+
 struct SceneSurface {
     vec3 position;         // interpolated from the vertices (more precise than origin + t * dir)
     vec3 geometricNormal;  // normalized; the front side of the CCW winding (glTF)
@@ -177,6 +258,14 @@ float sceneEmitterPdf(uint triangle, vec3 origin, vec3 lightPosition) {
     vec3 cr = cross(scene_bvh_triangles.positions[base + 1u].xyz,
                     scene_bvh_triangles.positions[base + 2u].xyz);
     vec3 toLight = lightPosition - origin;
+#if SCENE_LIGHT_SOLID_ANGLE
+    vec3 v0 = scene_bvh_triangles.positions[base].xyz - origin;
+    float omega = sceneTriangleSolidAngle(v0, v0 + scene_bvh_triangles.positions[base + 1u].xyz,
+                                          v0 + scene_bvh_triangles.positions[base + 2u].xyz);
+    // selection / omega, selection = density * area / totalPower (omega >= kSceneMinSolidAngle)
+    if (sceneUseSolidAngle(omega))
+        return m.emissive.w * 0.5 * length(cr) / (scene_info.totalPower * omega);
+#endif
     float d2 = dot(toLight, toLight);
     // |cos| * |cr| * d = |dot(cr, toLight)|; one product avoids two normalizations.
     float cosTimes = abs(dot(cr, toLight));
@@ -253,12 +342,43 @@ bool sceneSampleLight(vec3 position, vec4 u, out SceneLightSample s) {
     vec3 v0 = scene_bvh_triangles.positions[base].xyz;
     vec3 e1 = scene_bvh_triangles.positions[base + 1u].xyz;
     vec3 e2 = scene_bvh_triangles.positions[base + 2u].xyz;
+    vec3 cr = cross(e1, e2);
+    float crLen = length(cr);
+    float area = 0.5 * crLen;
+#if SCENE_LIGHT_SOLID_ANGLE
+    vec3 a = v0 - position;
+    float omega = sceneTriangleSolidAngle(a, a + e1, a + e2);
+    if (sceneUseSolidAngle(omega) && crLen > 0.0) {
+        vec3 w;
+        // omega >= kSceneMinSolidAngle > 0: no corner is at the shaded point (lengths > 0)
+        if (!sceneSampleSphericalTriangle(normalize(a), normalize(a + e1), normalize(a + e2),
+                                          omega, u.zw, w))
+            return false;
+        // Where w meets the triangle's plane, and that point's barycentrics (for the emission
+        // texture and the front/back test).
+        float wn = dot(cr, w);
+        if (!(abs(wn) > 0.0)) return false;  // grazing: w lies in the plane
+        float t = dot(cr, a) / wn;
+        if (!(t > 0.0)) return false;
+        vec3 q = w * t - a;  // lightPos - v0
+        float d00 = dot(e1, e1), d01 = dot(e1, e2), d11 = dot(e2, e2);
+        float det = d00 * d11 - d01 * d01;  // = |cr|^2 > 0
+        vec2 bary = vec2(d11 * dot(q, e1) - d01 * dot(q, e2), d00 * dot(q, e2) - d01 * dot(q, e1)) / det;
+        bary = clamp(bary, 0.0, 1.0);
+        float cosLight = -wn / crLen;  // crLen > 0
+        SceneSurface surf = sceneSurface(e.light, bary);
+        s.radiance = sceneEmission(surf.material, surf.uv, cosLight > 0.0);
+        if (all(equal(s.radiance, vec3(0.0)))) return false;
+        s.direction = w;
+        s.distance = t;
+        s.pdf = e.pdf / omega;  // selection x uniform solid-angle density
+        return s.pdf > 0.0;
+    }
+#endif
     // Uniform on the triangle: b1 = sqrt(u.z) (1 - u.w), b2 = sqrt(u.z) u.w.
     float su = sqrt(u.z);  // u.z >= 0
     vec2 bary = vec2(su * (1.0 - u.w), su * u.w);
     vec3 lightPos = v0 + e1 * bary.x + e2 * bary.y;
-    vec3 cr = cross(e1, e2);
-    float crLen = length(cr);
     vec3 toLight = lightPos - position;
     float d2 = dot(toLight, toLight);
     // Zero-area triangles are not in the table; d2 = 0 means the point is on the light.
@@ -269,7 +389,6 @@ bool sceneSampleLight(vec3 position, vec4 u, out SceneLightSample s) {
     float cosLight = dot(cr / crLen, -s.direction);  // crLen > 0
     SceneSurface surf = sceneSurface(e.light, bary);
     s.radiance = sceneEmission(surf.material, surf.uv, cosLight > 0.0);
-    float area = 0.5 * crLen;
     // Area -> solid angle: d^2 / (area |cos|); a grazing sample has no finite pdf.
     if (!(abs(cosLight) > 0.0) || all(equal(s.radiance, vec3(0.0)))) return false;
     s.pdf = e.pdf * d2 / (area * abs(cosLight));
