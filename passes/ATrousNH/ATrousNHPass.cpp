@@ -85,12 +85,6 @@ void ATrousNHPass::params(graph::ParamVisitor& v) {
           "tangent plane, in positionUnit (bounds how far along a surface a tap may reach: a "
           "lighting gradient over a wall is not flattened); 0 = unbounded",
           {0.0, 1e30});
-    v.add("sigmaTangentPerStep", mSigmaTangentPerStep, 0.0f,
-          "per-level reach: a level with step s uses max(sigmaTangent, s * sigmaTangentPerStep) "
-          "along the plane, so the large steps (which seed 000's schedule runs only in the outer "
-          "layers, where spp is lowest) reach as far as their taps; 0 = sigmaTangent at every "
-          "level. No effect when sigmaTangent is 0 (unbounded)",
-          {0.0, 1e30});
     v.add("dispatch", mDispatch, "tiles",
           "tiles: with a mask and 2-3 layers each level runs only on the 8x8 tiles holding the "
           "layers it updates (indirect dispatch from tile lists built on the GPU from the mask, "
@@ -240,11 +234,6 @@ void ATrousNHPass::buildTileLists(graph::ExecuteContext& ctx, uint32_t keys) {
     ++mTileBuilds;
 }
 
-float ATrousNHPass::tangentInvSigma2(int step) const {
-    if (!mUsePosition || mPositionTerm != "plane" || !(mSigmaTangent > 0.0f)) return 0.0f;
-    return invSquare(std::max(mSigmaTangent, float(step) * mSigmaTangentPerStep));
-}
-
 void ATrousNHPass::execute(graph::ExecuteContext& ctx) {
     const auto& out = ctx.image("denoised");
     const int width = int(out.width()), height = int(out.height());
@@ -262,7 +251,8 @@ void ATrousNHPass::execute(graph::ExecuteContext& ctx) {
         .set("invSigmaPosition2", mUsePosition ? invSquare(mSigmaPosition) : 0.0f)
         .set("positionRelative", int(mPositionUnit == "depth"))
         .set("positionPlane", int(mPositionTerm == "plane"))
-        .set("invSigmaTangent2", tangentInvSigma2(1))
+        .set("invSigmaTangent2",
+             mUsePosition && mPositionTerm == "plane" ? invSquare(mSigmaTangent) : 0.0f)
         .set("tileKey", 0)
         .set("tileStride", int(mTileCount))
         .set("alsoDst", -1);
@@ -298,7 +288,6 @@ void ATrousNHPass::execute(graph::ExecuteContext& ctx) {
             .set("dst", dst)
             .set("activeLayers", int(schedule[i].layers))
             .set("stepWidth", schedule[i].step)
-            .set("invSigmaTangent2", tangentInvSigma2(schedule[i].step))
             .set("fillOnly", 0)
             .set("countHoles", int(last && anyFill))
             .set("tileKey", int(keys[i]))
@@ -334,7 +323,6 @@ void ATrousNHPass::execute(graph::ExecuteContext& ctx) {
             .set("dst", even ? kPing : kDenoised)
             .set("activeLayers", int(schedule[i].layers))
             .set("stepWidth", schedule[i].step)
-            .set("invSigmaTangent2", tangentInvSigma2(schedule[i].step))
             .set("fillOnly", 1)
             .set("countHoles", 1);
         mPipeline->dispatchIndirect(ctx.cmd(), *mFillState, kFillArgsOffset);

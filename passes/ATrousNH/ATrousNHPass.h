@@ -49,7 +49,6 @@ private:
     std::string mPositionUnit = "scene";
     std::string mPositionTerm = "plane";
     float mSigmaTangent = 0.0f;
-    float mSigmaTangentPerStep = 0.0f;
     std::string mDispatch = "tiles";
     bool mUseMask = false, mUseNormal = false, mUsePosition = false;
     std::string mVariant;
@@ -61,8 +60,6 @@ private:
     // Layer-restricted levels (dispatch = tiles, mask, >= 2 layers): per-key tile lists built by
     // tile_lists.comp, cached until the mask input's version (or image) changes.
     void buildTileLists(graph::ExecuteContext& ctx, uint32_t keys);
-    // 1 / sigma^2 of the along-the-plane term for a level of this step (0 = term off).
-    float tangentInvSigma2(int step) const;
     bool mUseTiles = false;
     std::unique_ptr<gpu::ComputePipeline> mTileLists;
     std::unique_ptr<gpu::Buffer> mTiles;  // atrous_tiles block
