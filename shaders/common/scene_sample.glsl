@@ -58,8 +58,8 @@ float sceneAngleBetween(vec3 p, vec3 q) {
 // A B C' of area u.x * area, which fixes C' on the arc AC; u.y the point on the arc B C'. The
 // area comes from sceneTriangleSolidAngle, not from the spherical excess alpha + beta + gamma -
 // pi: for a sliver seen almost edge-on (the ceiling next to a light) that difference cancels to
-// a few digits, and a too small area leaves part of the triangle unsampled (a bias, measured on
-// the Bevy box). False for a degenerate triangle.
+// a few digits, and a too small area would leave part of the triangle unsampled (a bias). False
+// for a degenerate triangle.
 bool sceneSampleSphericalTriangle(vec3 A, vec3 B, vec3 C, float area, vec2 u, out vec3 w) {
     w = A;
     vec3 nAB = cross(A, B), nBC = cross(B, C), nCA = cross(C, A);
@@ -363,7 +363,8 @@ bool sceneSampleLight(vec3 position, vec4 u, out SceneLightSample s) {
         vec3 q = w * t - a;  // lightPos - v0
         float d00 = dot(e1, e1), d01 = dot(e1, e2), d11 = dot(e2, e2);
         float det = d00 * d11 - d01 * d01;  // = |cr|^2 > 0
-        vec2 bary = vec2(d11 * dot(q, e1) - d01 * dot(q, e2), d00 * dot(q, e2) - d01 * dot(q, e1)) / det;
+        float qe1 = dot(q, e1), qe2 = dot(q, e2);
+        vec2 bary = vec2(d11 * qe1 - d01 * qe2, d00 * qe2 - d01 * qe1) / det;
         bary = clamp(bary, 0.0, 1.0);
         float cosLight = -wn / crLen;  // crLen > 0
         SceneSurface surf = sceneSurface(e.light, bary);
