@@ -19,9 +19,10 @@ const float kSceneInfiniteDistance = 1e30;  // shadow-ray tMax of directional li
 // triangle yields a direction uniform in the solid angle it subtends (Arvo 1995) instead of a
 // uniform point on its area, so the d^2 / (A cos) factor of area sampling, heavy-tailed next to
 // the light, never enters the estimate. Triangles subtending less than kSceneMinSolidAngle
-// (float precision of the spherical excess) or more than kSceneMaxSolidAngle (close to a
-// hemisphere, where Arvo's inversion degenerates) keep area sampling; sceneSampleLight and
-// sceneEmitterPdf make the same choice from the same solid angle, so MIS stays consistent.
+// (where the float formulas below lose their digits) or more than kSceneMaxSolidAngle (close
+// to a hemisphere, where the inversion loses precision; pbrt-v4 uses similar bounds) keep area
+// sampling; sceneSampleLight and sceneEmitterPdf make the same choice from the same solid
+// angle, so MIS stays consistent.
 #ifndef SCENE_LIGHT_SOLID_ANGLE
 #define SCENE_LIGHT_SOLID_ANGLE 0
 #endif
@@ -62,15 +63,12 @@ float sceneAngleBetween(vec3 p, vec3 q) {
 // for a degenerate triangle.
 bool sceneSampleSphericalTriangle(vec3 A, vec3 B, vec3 C, float area, vec2 u, out vec3 w) {
     w = A;
-    vec3 nAB = cross(A, B), nBC = cross(B, C), nCA = cross(C, A);
-    float lAB = length(nAB), lBC = length(nBC), lCA = length(nCA);
-    if (!(lAB > 0.0 && lBC > 0.0 && lCA > 0.0)) return false;
-    nAB /= lAB;  // lengths > 0 checked above
-    nBC /= lBC;
-    nCA /= lCA;
-    // Interior angles: between the planes of the two edges meeting at each corner.
-    float alpha = sceneAngleBetween(nAB, -nCA);
     if (!(area > 0.0)) return false;
+    vec3 nAB = cross(A, B), nCA = cross(C, A);
+    float lAB = length(nAB), lBC = length(cross(B, C)), lCA = length(nCA);
+    if (!(lAB > 0.0 && lBC > 0.0 && lCA > 0.0)) return false;  // an edge of zero length
+    // The interior angle at A: between the planes of the two edges meeting there.
+    float alpha = sceneAngleBetween(nAB / lAB, -nCA / lCA);  // lengths > 0 checked above
     float areaSub = u.x * area;
     float s = sin(areaSub - alpha), t = cos(areaSub - alpha);
     float cosAlpha = cos(alpha), sinAlpha = sin(alpha);
