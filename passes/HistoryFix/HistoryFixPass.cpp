@@ -52,6 +52,18 @@ void HistoryFixPass::reflect(graph::Reflection& r) const {
     r.input("count").optional().floatOnly().sameAs("color").doc(
         "optional: its alpha is the frame count instead of color.a (e.g. BMFR's accumulated "
         "next to its filtered colour)");
+    r.input("albedo").optional().floatOnly().sameAs("color").doc(
+        "optional: colour is remodulated (c = y * albedo' + emission, e.g. BMFR's filtered): the "
+        "rebuild averages y = (c - emission) / albedo' and multiplies back by the pixel's own "
+        "albedo' (albedo' = albedo > 1e-3 ? albedo : 1, as Remodulate)");
+    r.input("emission")
+        .optional()
+        .floatOnly()
+        .sameAs("color")
+        .doc(
+            "optional: emission added to the colour after demodulation (GBuffer's emission): "
+            "subtracted before the rebuild and added back, so an emitter never bleeds into its "
+            "coplanar surroundings");
     r.output("result", rgba32)
         .sameAs("color")
         .doc("colour with few-frame pixels rebuilt; a = color.a");
@@ -89,13 +101,17 @@ void HistoryFixPass::execute(graph::ExecuteContext& ctx) {
     const float scale = mReferenceHeight > 0.0f ? float(height) / mReferenceHeight : 1.0f;
     const int levelShift = int(std::lround(std::log2(scale)));
 
+    const int useAlbedo = int(ctx.connected("albedo"));
+    const int useEmission = int(ctx.connected("emission"));
     if (mMethod == "mips") {
         ctx.bindFields(*mMipFirst);
         mMipFirst->set("size", glm::ivec2(width, height))
             .set("eyeWidth", eyeWidth)
             .set("eyes", eyes)
             .set("blocks", blocks[0])
-            .set("height", rows[0]);
+            .set("height", rows[0])
+            .set("useAlbedo", useAlbedo)
+            .set("useEmission", useEmission);
         mMipFirst->dispatch(cmd, uint32_t(blocks[0] * eyes), uint32_t(rows[0]));
         for (int l = 2; l <= kLevels; ++l) {
             gpu::computeToComputeBarrier(cmd);
@@ -122,7 +138,9 @@ void HistoryFixPass::execute(graph::ExecuteContext& ctx) {
         .set("baseStride", mBasePixelStride * scale)
         .set("levelShift", levelShift)
         .set("depthSensitivity", mDepthSensitivity)
-        .set("useCount", int(ctx.connected("count")));
+        .set("useCount", int(ctx.connected("count")))
+        .set("useAlbedo", useAlbedo)
+        .set("useEmission", useEmission);
     mFix->dispatch(cmd, out.width(), out.height());
 }
 

@@ -12,7 +12,8 @@
 //     floor(basePixelStride / (2 + N)) px, weight (1 + N_q) x the same depth weight; the sum starts
 //     with the pixel itself at weight 1 + N.
 // The count is color.a or, when connected, count.a (BMFR: filtered colour, accumulated count).
-// Alpha passes through.
+// With `albedo` / `emission` connected both methods rebuild the demodulated colour and remodulate
+// it with the pixel's own albedo' and emission (mip_common.glsl). Alpha passes through.
 #extension GL_GOOGLE_include_directive : require
 #include "common/color.glsl"
 #include "history_fix/mip_common.glsl"
@@ -22,6 +23,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 uniform sampler2D color;
 uniform sampler2D depth;
 uniform sampler2D count;  // optional: the frame count is its alpha (else color.a)
+uniform sampler2D albedo;    // optional (useAlbedo)
+uniform sampler2D emission;  // optional (useEmission)
 uniform sampler2D mip1;
 uniform sampler2D mip2;
 uniform sampler2D mip3;
@@ -41,7 +44,22 @@ layout(push_constant) uniform Params {
     float depthSensitivity;
     int useCount;        // 1: N from count.a, else from color.a
     int levelShift;      // round(log2(H / referenceHeight)), <= 0 below the reference height
+    int useAlbedo;       // 1: demodulate by albedo' before averaging, remodulate after
+    int useEmission;     // 1: subtract emission before averaging, add it back after
 } pc;
+
+bool demodulating() { return pc.useAlbedo != 0 || pc.useEmission != 0; }
+
+vec3 albedoAt(ivec2 q) { return hfSafeAlbedo(texelFetch(albedo, q, 0).rgb, pc.useAlbedo != 0); }
+
+vec3 emissionAt(ivec2 q) {
+    return hfSafeEmission(texelFetch(emission, q, 0).rgb, pc.useEmission != 0);
+}
+
+// The value the rebuild averages: the colour itself, or (c - emission) / albedo' (albedo' >= 1e-3).
+vec3 demodulated(ivec2 q, vec3 c) {
+    return demodulating() ? (c - emissionAt(q)) / albedoAt(q) : c;
+}
 
 float countAt(ivec2 q, vec4 c) {
     float a = pc.useCount != 0 ? texelFetch(count, q, 0).a : c.a;
@@ -98,17 +116,21 @@ void main() {
     int eye = eyeOfPixel(p.x, pc.eyeWidth, pc.eyes);
     int x0 = eye * pc.eyeWidth;
     int x1 = eye == pc.eyes - 1 ? pc.size.x - 1 : x0 + pc.eyeWidth - 1;
-    vec3 fixedColor = sanitize(c).rgb;
+    // The pixel's own value in the averaged (possibly demodulated) space; remodulated at the end.
+    vec3 fixedColor = demodulated(p, sanitize(c).rgb);
     if (pc.method == 0) {
         // The talk's level, shifted to this resolution; <= 0: finer than a 2x2 block, nothing to
         // rebuild from (the loop does not run and the pixel keeps its value).
         int level = min(int(ceil(4.0 * (1.0 - n / pc.fixFrames))) + pc.levelShift, 4);  // Nhf > 0
-        for (int l = level; l >= 1; --l) {
+        bool rebuilt = false;
+        for (int l = level; l >= 1 && !rebuilt; --l) {
             vec3 v;
-            if (upsample(l, eye, p.x - x0, p.y, z, v)) {
-                fixedColor = v;
-                break;
-            }
+            rebuilt = upsample(l, eye, p.x - x0, p.y, z, v);
+            if (rebuilt) fixedColor = v;
+        }
+        if (!rebuilt) {  // kept as it came (no remodulation round trip)
+            imageStore(result, p, sanitize(c));
+            return;
         }
     } else {
         int stride = max(int(floor(pc.baseStride / (2.0 + n))), 1);
@@ -122,10 +144,11 @@ void main() {
                 float w = depthWeight(texelFetch(depth, q, 0).r, z) *
                           (1.0 + clamp(countAt(q, s), 0.0, 64.0));  // NaN: skipped below
                 if (!(w > 0.0)) continue;
-                sum += w * s.rgb;
+                sum += w * demodulated(q, s.rgb);
                 wsum += w;
             }
         fixedColor = sum / wsum;  // wsum >= 1
     }
+    if (demodulating()) fixedColor = fixedColor * albedoAt(p) + emissionAt(p);
     imageStore(result, p, sanitize(vec4(fixedColor, c.a)));
 }

@@ -1,7 +1,8 @@
 #version 460
 // HistoryFix: mip level 1 = 2x2 averages over the pixels that have a surface (depth > 0), per
 // eye; a = their mean view depth (0 = no surface in the block). Seed 004 builds the HistoryFix
-// mips from the accumulated signal; colour is sanitized so a NaN cannot spread to a block.
+// mips from the accumulated signal; colour is sanitized so a NaN cannot spread to a block. With
+// `albedo` / `emission` connected the blocks average the demodulated colour (mip_common.glsl).
 #extension GL_GOOGLE_include_directive : require
 #include "common/color.glsl"
 #include "history_fix/mip_common.glsl"
@@ -10,6 +11,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 uniform sampler2D color;
 uniform sampler2D depth;
+uniform sampler2D albedo;    // optional (useAlbedo)
+uniform sampler2D emission;  // optional (useEmission)
 layout(rgba32f) uniform writeonly image2D mip1;
 
 layout(push_constant) uniform Params {
@@ -18,6 +21,8 @@ layout(push_constant) uniform Params {
     int eyes;
     int blocks;    // blocks per eye at this level
     int height;    // rows of this level
+    int useAlbedo;
+    int useEmission;
 } pc;
 
 void main() {
@@ -35,7 +40,12 @@ void main() {
         if (q.x > x1 || q.y >= pc.size.y) continue;
         float z = texelFetch(depth, q, 0).r;
         if (!(z > 0.0) || isinf(z)) continue;
-        sum += vec4(sanitize(texelFetch(color, q, 0)).rgb, z);
+        vec3 c = sanitize(texelFetch(color, q, 0)).rgb;
+        if (pc.useAlbedo != 0 || pc.useEmission != 0) {
+            vec3 e = hfSafeEmission(texelFetch(emission, q, 0).rgb, pc.useEmission != 0);
+            c = (c - e) / hfSafeAlbedo(texelFetch(albedo, q, 0).rgb, pc.useAlbedo != 0);  // >= 1e-3
+        }
+        sum += vec4(c, z);
         count += 1.0;
     }
     imageStore(mip1, b, count > 0.0 ? sum / count : vec4(0.0));
