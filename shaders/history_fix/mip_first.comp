@@ -2,7 +2,8 @@
 // HistoryFix: mip level 1 = 2x2 averages over the pixels that have a surface (depth > 0), per
 // eye; a = their mean view depth (0 = no surface in the block). Seed 004 builds the HistoryFix
 // mips from the accumulated signal; colour is sanitized so a NaN cannot spread to a block. With
-// `albedo` / `emission` connected the blocks average the demodulated colour (mip_common.glsl).
+// `albedo` / `emission` connected the blocks average the demodulated colour, with `normal` connected
+// nmip1 gets the blocks' mean normal (mip_common.glsl).
 #extension GL_GOOGLE_include_directive : require
 #include "common/color.glsl"
 #include "history_fix/mip_common.glsl"
@@ -13,7 +14,9 @@ uniform sampler2D color;
 uniform sampler2D depth;
 uniform sampler2D albedo;    // optional (useAlbedo)
 uniform sampler2D emission;  // optional (useEmission)
+uniform sampler2D normal;    // optional (useNormal)
 layout(rgba32f) uniform writeonly image2D mip1;
+layout(rgba16f) uniform writeonly image2D nmip1;  // mean normal of the same pixels (useNormal)
 
 layout(push_constant) uniform Params {
     ivec2 size;    // full-resolution image
@@ -23,6 +26,7 @@ layout(push_constant) uniform Params {
     int height;    // rows of this level
     int useAlbedo;
     int useEmission;
+    int useNormal;
 } pc;
 
 void main() {
@@ -34,6 +38,7 @@ void main() {
     int x1 = eye == pc.eyes - 1 ? pc.size.x - 1 : x0 + pc.eyeWidth - 1;
     ivec2 base = ivec2(x0 + 2 * (b.x - eye * pc.blocks), 2 * b.y);
     vec4 sum = vec4(0.0);
+    vec3 nsum = vec3(0.0);
     float count = 0.0;
     for (int k = 0; k < 4; ++k) {
         ivec2 q = base + ivec2(k & 1, k >> 1);
@@ -46,7 +51,12 @@ void main() {
             c = (c - e) / hfSafeAlbedo(texelFetch(albedo, q, 0).rgb, pc.useAlbedo != 0);  // >= 1e-3
         }
         sum += vec4(c, z);
+        if (pc.useNormal != 0) {
+            vec3 n = texelFetch(normal, q, 0).xyz;
+            nsum += any(isnan(n)) || any(isinf(n)) ? vec3(0.0) : n;  // 0: no vote
+        }
         count += 1.0;
     }
     imageStore(mip1, b, count > 0.0 ? sum / count : vec4(0.0));
+    if (pc.useNormal != 0) imageStore(nmip1, b, vec4(count > 0.0 ? nsum / count : vec3(0.0), 0.0));
 }
