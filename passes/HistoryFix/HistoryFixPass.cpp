@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/trigonometric.hpp>
 
 #include "core/scene/Camera.h"
 #include "core/vk/Barriers.h"
@@ -40,6 +41,13 @@ void HistoryFixPass::params(graph::ParamVisitor& v) {
           "covers the same fraction of the view at any size (seed 004's figures are 720p-1440p). "
           "0 = no scaling (pixel values as given)",
           {0.0, 16384.0});
+    v.add("normalAngle", mNormalAngle, 30.0f,
+          "with `normal` connected: a coarse texel's weight is saturate((n . n_L - cos a) / "
+          "(1 - cos a)) with n_L its mean normal, not renormalized, so a texel that points away "
+          "by more than this angle or mixes two faces (|n_L| < 1) is not used; a stride tap is "
+          "tested with its own normal (ours; the talk's upsample is depth-aware only, which "
+          "averages across a box's edge where both faces have the same depth)",
+          {1.0, 180.0});
     v.add("eyes", mEyes, 0,
           "side-by-side eyes (nothing crosses the seam); 0 = the frame camera's eye count", {0, 2});
 }
@@ -52,6 +60,21 @@ void HistoryFixPass::reflect(graph::Reflection& r) const {
     r.input("count").optional().floatOnly().sameAs("color").doc(
         "optional: its alpha is the frame count instead of color.a (e.g. BMFR's accumulated "
         "next to its filtered colour)");
+    r.input("albedo").optional().floatOnly().sameAs("color").doc(
+        "optional: colour is remodulated (c = y * albedo' + emission, e.g. BMFR's filtered): the "
+        "rebuild averages y = (c - emission) / albedo' and multiplies back by the pixel's own "
+        "albedo' (albedo' = albedo > 1e-3 ? albedo : 1, as Remodulate)");
+    r.input("emission")
+        .optional()
+        .floatOnly()
+        .sameAs("color")
+        .doc(
+            "optional: emission added to the colour after demodulation (GBuffer's emission): "
+            "subtracted before the rebuild and added back, so an emitter never bleeds into its "
+            "coplanar surroundings");
+    r.input("normal").optional().floatOnly().sameAs("color").doc(
+        "optional: GBuffer's shading normal; coarse texels and taps are weighted by the angle to "
+        "it (normalAngle)");
     r.output("result", rgba32)
         .sameAs("color")
         .doc("colour with few-frame pixels rebuilt; a = color.a");
@@ -62,11 +85,17 @@ void HistoryFixPass::reflect(graph::Reflection& r) const {
         r.internal("mip" + std::to_string(l), rgba32)
             .scaled(0.5f)
             .doc("level " + std::to_string(l) + ": 2^L blocks per eye, a = mean depth");
+    const auto rgba16 = vk::Format::eR16G16B16A16Sfloat;
+    r.internal("nmip1", rgba16).sameAs("color").doc("level 1 mean normals (normal connected)");
+    for (int l = 2; l <= kLevels; ++l)
+        r.internal("nmip" + std::to_string(l), rgba16)
+            .scaled(0.5f)
+            .doc("level " + std::to_string(l) + " mean normals (normal connected)");
 }
 
 void HistoryFixPass::compile(graph::CompileContext& ctx) {
     mMipFirst = ctx.createPipeline("history_fix/mip_first.comp");
-    mMipDown = ctx.createPipeline("history_fix/mip_down.comp", {}, {"src", "dst"});
+    mMipDown = ctx.createPipeline("history_fix/mip_down.comp", {}, {"src", "dst", "nsrc", "ndst"});
     mFix = ctx.createPipeline("history_fix/fix.comp");
 }
 
@@ -89,23 +118,32 @@ void HistoryFixPass::execute(graph::ExecuteContext& ctx) {
     const float scale = mReferenceHeight > 0.0f ? float(height) / mReferenceHeight : 1.0f;
     const int levelShift = int(std::lround(std::log2(scale)));
 
+    const int useAlbedo = int(ctx.connected("albedo"));
+    const int useEmission = int(ctx.connected("emission"));
+    const int useNormal = int(ctx.connected("normal"));
     if (mMethod == "mips") {
         ctx.bindFields(*mMipFirst);
         mMipFirst->set("size", glm::ivec2(width, height))
             .set("eyeWidth", eyeWidth)
             .set("eyes", eyes)
             .set("blocks", blocks[0])
-            .set("height", rows[0]);
+            .set("height", rows[0])
+            .set("useAlbedo", useAlbedo)
+            .set("useEmission", useEmission)
+            .set("useNormal", useNormal);
         mMipFirst->dispatch(cmd, uint32_t(blocks[0] * eyes), uint32_t(rows[0]));
         for (int l = 2; l <= kLevels; ++l) {
             gpu::computeToComputeBarrier(cmd);
             mMipDown->bind("src", ctx.image("mip" + std::to_string(l - 1)))
-                .bind("dst", ctx.image("mip" + std::to_string(l)));
+                .bind("dst", ctx.image("mip" + std::to_string(l)))
+                .bind("nsrc", ctx.image("nmip" + std::to_string(l - 1)))
+                .bind("ndst", ctx.image("nmip" + std::to_string(l)));
             mMipDown->set("eyes", eyes)
                 .set("blocks", blocks[l - 1])
                 .set("height", rows[l - 1])
                 .set("srcBlocks", blocks[l - 2])
-                .set("srcHeight", rows[l - 2]);
+                .set("srcHeight", rows[l - 2])
+                .set("useNormal", useNormal);
             mMipDown->dispatch(cmd, uint32_t(blocks[l - 1] * eyes), uint32_t(rows[l - 1]));
         }
         gpu::computeToComputeBarrier(cmd);
@@ -122,7 +160,11 @@ void HistoryFixPass::execute(graph::ExecuteContext& ctx) {
         .set("baseStride", mBasePixelStride * scale)
         .set("levelShift", levelShift)
         .set("depthSensitivity", mDepthSensitivity)
-        .set("useCount", int(ctx.connected("count")));
+        .set("useCount", int(ctx.connected("count")))
+        .set("useAlbedo", useAlbedo)
+        .set("useEmission", useEmission)
+        .set("useNormal", useNormal)
+        .set("cosNormal", std::cos(glm::radians(mNormalAngle)));
     mFix->dispatch(cmd, out.width(), out.height());
 }
 

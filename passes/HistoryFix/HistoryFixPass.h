@@ -3,7 +3,9 @@
 // data: the talk's mip pyramid (levels 4, 3, 2 over the first frames, depth-aware upsample) or
 // NRD's strided 5x5. Pixels with enough history pass bit-exactly. Takes any colour whose alpha
 // is a frame count (RecurrentBlur's accumulated: N; BMFR's accumulated: samples = N + 1, set
-// countOffset = 1), so it can follow any temporal accumulation.
+// countOffset = 1), so it can follow any temporal accumulation; a remodulated colour (BMFR's
+// filtered) is rebuilt demodulated when `albedo` / `emission` are connected, and with `normal`
+// connected the rebuild does not cross creases of equal depth.
 #pragma once
 #include <string>
 
@@ -26,6 +28,7 @@ private:
     float mBasePixelStride = 14.0f;
     float mDepthSensitivity = 0.05f;
     float mReferenceHeight = 1080.0f;
+    float mNormalAngle = 30.0f;
     int mEyes = 0;
     std::unique_ptr<gpu::ComputePipeline> mMipFirst, mMipDown, mFix;
 };

@@ -57,6 +57,12 @@ void RecurrentBlurPass::params(graph::ParamVisitor& v) {
           "temporal: a history tap is dropped when the previous surface is farther than this "
           "fraction of the frustum size from the pixel's plane (talk: 0.5-1.5 %)",
           {0.0, 1.0});
+    v.add("disocclusionNormal", mDisocclusionNormal, 0.5f,
+          "temporal: a history tap is also dropped when the cosine between the previous "
+          "surface's normal and the pixel's is below this (ours, as BMFR's normalThreshold: the "
+          "talk's plane distance alone keeps a tap of the floor or wall that lies in the plane "
+          "of a box's side face, and a revealed face inherits their colour); -1 = off",
+          {-1.0, 1.0});
     v.add("minHitDistanceWeight", mMinHitDistanceWeight, 0.1f,
           "blur: floor of the hit-distance weight (NRD 0.1)", {0.0, 1.0});
     v.add("fireflySuppression", mFireflySuppression, true,
@@ -112,6 +118,10 @@ void RecurrentBlurPass::reflect(graph::Reflection& r) const {
             .sameAs(ref)
             .history()
             .doc("own history: world position, w = N (-1 = no surface)");
+        r.internal("geonormal", vk::Format::eR16G16B16A16Sfloat)
+            .sameAs(ref)
+            .history()
+            .doc("own history: shading normal (0 = no surface), for disocclusionNormal");
     } else {
         r.output("blurred", kRgba32).sameAs(ref).doc("after the blur, a = N");
         r.output("history", kRgba32)
@@ -206,7 +216,8 @@ void RecurrentBlurPass::executeTemporal(graph::ExecuteContext& ctx) {
 
     // Temporal accumulation. Both histories must hold a frame: the recurrent input (false on the
     // first frame, after a reset or cut) and our own geometry.
-    const bool useHistory = ctx.historyValid("history") && ctx.historyValid("geo");
+    const bool useHistory =
+        ctx.historyValid("history") && ctx.historyValid("geo") && ctx.historyValid("geonormal");
     ctx.bindFields(*mTemporal);
     mTemporal->set("size", e.size)
         .set("eyeWidth", e.eyeWidth)
@@ -216,6 +227,7 @@ void RecurrentBlurPass::executeTemporal(graph::ExecuteContext& ctx) {
         .set("useMotion", int(mUseMotion))
         .set("maxFrames", float(mMaxAccumulatedFrames))
         .set("threshold", mDisocclusionThreshold)
+        .set("cosNormal", mDisocclusionNormal)
         .set("firefly", int(mFireflySuppression))
         .set("maxBlurRadius", mMaxBlurRadius);
     mTemporal->dispatch(cmd, out.width(), out.height());

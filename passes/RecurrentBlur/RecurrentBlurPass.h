@@ -51,6 +51,7 @@ private:
     std::string mRadiusScaling = "sqrt";
     float mPlaneDistanceSensitivity = 0.02f;
     float mDisocclusionThreshold = 0.01f;
+    float mDisocclusionNormal = 0.5f;
     float mMinHitDistanceWeight = 0.1f;
     bool mFireflySuppression = true;
     int mMaxStabilizedFrames = 63;

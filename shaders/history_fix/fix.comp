@@ -12,7 +12,10 @@
 //     floor(basePixelStride / (2 + N)) px, weight (1 + N_q) x the same depth weight; the sum starts
 //     with the pixel itself at weight 1 + N.
 // The count is color.a or, when connected, count.a (BMFR: filtered colour, accumulated count).
-// Alpha passes through.
+// With `albedo` / `emission` connected both methods rebuild the demodulated colour and remodulate
+// it with the pixel's own albedo' and emission (mip_common.glsl). With `normal` connected a coarse
+// texel or stride tap whose normal deviates by more than normalAngle is not used (its weight falls
+// to 0 at the angle), so the rebuild does not cross a crease of equal depth. Alpha passes through.
 #extension GL_GOOGLE_include_directive : require
 #include "common/color.glsl"
 #include "history_fix/mip_common.glsl"
@@ -22,10 +25,17 @@ layout(local_size_x = 8, local_size_y = 8) in;
 uniform sampler2D color;
 uniform sampler2D depth;
 uniform sampler2D count;  // optional: the frame count is its alpha (else color.a)
+uniform sampler2D albedo;    // optional (useAlbedo)
+uniform sampler2D emission;  // optional (useEmission)
+uniform sampler2D normal;    // optional (useNormal)
 uniform sampler2D mip1;
 uniform sampler2D mip2;
 uniform sampler2D mip3;
 uniform sampler2D mip4;
+uniform sampler2D nmip1;  // mean normals of the levels (useNormal)
+uniform sampler2D nmip2;
+uniform sampler2D nmip3;
+uniform sampler2D nmip4;
 layout(rgba32f) uniform writeonly image2D result;
 
 layout(push_constant) uniform Params {
@@ -41,7 +51,24 @@ layout(push_constant) uniform Params {
     float depthSensitivity;
     int useCount;        // 1: N from count.a, else from color.a
     int levelShift;      // round(log2(H / referenceHeight)), <= 0 below the reference height
+    int useAlbedo;       // 1: demodulate by albedo' before averaging, remodulate after
+    int useEmission;     // 1: subtract emission before averaging, add it back after
+    int useNormal;       // 1: normal test against the texel's / tap's normal
+    float cosNormal;     // cos(normalAngle)
 } pc;
+
+bool demodulating() { return pc.useAlbedo != 0 || pc.useEmission != 0; }
+
+vec3 albedoAt(ivec2 q) { return hfSafeAlbedo(texelFetch(albedo, q, 0).rgb, pc.useAlbedo != 0); }
+
+vec3 emissionAt(ivec2 q) {
+    return hfSafeEmission(texelFetch(emission, q, 0).rgb, pc.useEmission != 0);
+}
+
+// The value the rebuild averages: the colour itself, or (c - emission) / albedo' (albedo' >= 1e-3).
+vec3 demodulated(ivec2 q, vec3 c) {
+    return demodulating() ? (c - emissionAt(q)) / albedoAt(q) : c;
+}
 
 float countAt(ivec2 q, vec4 c) {
     float a = pc.useCount != 0 ? texelFetch(count, q, 0).a : c.a;
@@ -52,6 +79,13 @@ float depthWeight(float zq, float z) {  // z > 0 (caller)
     return zq > 0.0 ? clamp(1.0 - abs(zq - z) / (pc.depthSensitivity * z), 0.0, 1.0) : 0.0;
 }
 
+vec3 normalMipFetch(int level, ivec2 t) {
+    if (level == 1) return texelFetch(nmip1, t, 0).xyz;
+    if (level == 2) return texelFetch(nmip2, t, 0).xyz;
+    if (level == 3) return texelFetch(nmip3, t, 0).xyz;
+    return texelFetch(nmip4, t, 0).xyz;
+}
+
 vec4 mipFetch(int level, ivec2 t) {
     if (level == 1) return texelFetch(mip1, t, 0);
     if (level == 2) return texelFetch(mip2, t, 0);
@@ -60,7 +94,7 @@ vec4 mipFetch(int level, ivec2 t) {
 }
 
 // Depth-aware bilinear upsample of `level` at pixel p of eye `eye` (local column xl).
-bool upsample(int level, int eye, int xl, int y, float z, out vec3 value) {
+bool upsample(int level, int eye, int xl, int y, float z, vec3 n, out vec3 value) {
     int blocks = pc.blocks[level - 1], rows = pc.heights[level - 1];
     float scale = float(1 << level);
     vec2 f = (vec2(xl, y) + 0.5) / scale - 0.5;
@@ -71,8 +105,11 @@ bool upsample(int level, int eye, int xl, int y, float z, out vec3 value) {
     for (int k = 0; k < 4; ++k) {
         ivec2 o = ivec2(k & 1, k >> 1);
         ivec2 q = clamp(i0 + o, ivec2(0), ivec2(blocks - 1, rows - 1));  // inside the eye
-        vec4 m = mipFetch(level, ivec2(eye * blocks + q.x, q.y));
+        ivec2 texel = ivec2(eye * blocks + q.x, q.y);
+        vec4 m = mipFetch(level, texel);
         float w = (o.x == 1 ? t.x : 1.0 - t.x) * (o.y == 1 ? t.y : 1.0 - t.y) * depthWeight(m.a, z);
+        if (pc.useNormal != 0 && w > 0.0)
+            w *= hfNormalWeight(n, normalMipFetch(level, texel), pc.cosNormal);
         if (!(w > 0.0)) continue;
         sum += w * m.rgb;
         wsum += w;
@@ -98,17 +135,22 @@ void main() {
     int eye = eyeOfPixel(p.x, pc.eyeWidth, pc.eyes);
     int x0 = eye * pc.eyeWidth;
     int x1 = eye == pc.eyes - 1 ? pc.size.x - 1 : x0 + pc.eyeWidth - 1;
-    vec3 fixedColor = sanitize(c).rgb;
+    vec3 nrm = pc.useNormal != 0 ? texelFetch(normal, p, 0).xyz : vec3(0.0);
+    // The pixel's own value in the averaged (possibly demodulated) space; remodulated at the end.
+    vec3 fixedColor = demodulated(p, sanitize(c).rgb);
     if (pc.method == 0) {
         // The talk's level, shifted to this resolution; <= 0: finer than a 2x2 block, nothing to
         // rebuild from (the loop does not run and the pixel keeps its value).
         int level = min(int(ceil(4.0 * (1.0 - n / pc.fixFrames))) + pc.levelShift, 4);  // Nhf > 0
-        for (int l = level; l >= 1; --l) {
+        bool rebuilt = false;
+        for (int l = level; l >= 1 && !rebuilt; --l) {
             vec3 v;
-            if (upsample(l, eye, p.x - x0, p.y, z, v)) {
-                fixedColor = v;
-                break;
-            }
+            rebuilt = upsample(l, eye, p.x - x0, p.y, z, nrm, v);
+            if (rebuilt) fixedColor = v;
+        }
+        if (!rebuilt) {  // kept as it came (no remodulation round trip)
+            imageStore(result, p, sanitize(c));
+            return;
         }
     } else {
         int stride = max(int(floor(pc.baseStride / (2.0 + n))), 1);
@@ -121,11 +163,14 @@ void main() {
                 vec4 s = sanitize(texelFetch(color, q, 0));
                 float w = depthWeight(texelFetch(depth, q, 0).r, z) *
                           (1.0 + clamp(countAt(q, s), 0.0, 64.0));  // NaN: skipped below
+                if (pc.useNormal != 0 && w > 0.0)
+                    w *= hfNormalWeight(nrm, texelFetch(normal, q, 0).xyz, pc.cosNormal);
                 if (!(w > 0.0)) continue;
-                sum += w * s.rgb;
+                sum += w * demodulated(q, s.rgb);
                 wsum += w;
             }
         fixedColor = sum / wsum;  // wsum >= 1
     }
+    if (demodulating()) fixedColor = fixedColor * albedoAt(p) + emissionAt(p);
     imageStore(result, p, sanitize(vec4(fixedColor, c.a)));
 }

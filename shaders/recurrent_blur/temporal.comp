@@ -9,6 +9,10 @@
 // history long), capped at maxFrames; the blend weight of the new frame is 1/(1+N), the talk's
 // "linear accumulation speed" (proof slide: a running mean up to the cap, then an EMA).
 // A firefly suppressor limits the new sample's luminance relative to the history's.
+// Ours: a tap is also dropped when its normal deviates from the pixel's (cos < cosNormal, as
+// BMFR's normal test): the plane distance alone accepts a floor or wall point lying in the plane
+// of a box's side face, so a face revealed by the camera inherited the floor's colour (issue 13,
+// error by history age on the glTF Cornell box).
 #extension GL_GOOGLE_include_directive : require
 #include "common/color.glsl"
 #include "recurrent_blur/reblur_common.glsl"
@@ -18,6 +22,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 uniform sampler2D preblurred;  // this frame's pre-blurred radiance, a = h (normalized hit)
 uniform sampler2D history;     // last frame's post-blurred result, a = h (delay-1 edge)
 uniform sampler2D prev_geo;    // our own geometry of last frame: xyz position, w = N (-1 miss)
+uniform sampler2D prev_geonormal;  // last frame's shading normal (0 = no surface)
 uniform sampler2D normal;
 uniform sampler2D position;
 uniform sampler2D depth;
@@ -25,6 +30,7 @@ uniform sampler2D motion;
 layout(rgba32f) uniform writeonly image2D accumulated;  // rgb accumulated, a = N
 layout(r32f) uniform writeonly image2D hit;             // accumulated normalized hit distance
 layout(rgba32f) uniform writeonly image2D geo;          // xyz position, w = N (-1: no surface)
+layout(rgba16f) uniform writeonly image2D geonormal;    // unit normal (0: no surface)
 
 layout(push_constant) uniform Params {
     ivec2 size;
@@ -37,6 +43,7 @@ layout(push_constant) uniform Params {
     float threshold;     // disocclusion: plane distance as a fraction of the frustum size
     int firefly;         // 1: firefly suppression on
     float maxBlurRadius; // strength of the firefly suppressor grows with it (specs §2)
+    float cosNormal;     // disocclusion: minimum cosine between the tap's normal and ours; -1 off
 } pc;
 
 vec3 unitNormal(vec4 n) {
@@ -58,6 +65,7 @@ void main() {
         imageStore(accumulated, p, vec4(c.rgb, 0.0));
         imageStore(hit, p, vec4(1.0));
         imageStore(geo, p, vec4(0.0, 0.0, 0.0, -1.0));
+        imageStore(geonormal, p, vec4(0.0));
         return;
     }
     vec3 nrm = unitNormal(texelFetch(normal, p, 0));
@@ -83,6 +91,10 @@ void main() {
             if (!(g.w >= 0.0)) continue;  // no surface there last frame (or NaN)
             // Plane distance of the previous surface to this pixel's plane.
             if (!(abs(dot(nrm, g.xyz - x)) <= pc.threshold * frustum)) continue;
+            // Normal test (ours): a zero normal (no surface) or NaN fails it unless it is off.
+            if (pc.cosNormal > -1.0 &&
+                !(dot(nrm, texelFetch(prev_geonormal, q, 0).xyz) >= pc.cosNormal))
+                continue;
             float w = wb;
             if (!(w > 0.0)) continue;
             sum += w * sanitize(texelFetch(history, q, 0));
@@ -112,4 +124,5 @@ void main() {
     imageStore(accumulated, p, sanitize(vec4(acc, n)));
     imageStore(hit, p, vec4(hacc));
     imageStore(geo, p, vec4(x, n));
+    imageStore(geonormal, p, vec4(nrm, 0.0));
 }

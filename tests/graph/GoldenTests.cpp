@@ -177,6 +177,9 @@ TEST_F(GoldenTest, ReBLUR) {
     // (rbs.history -> rbt.history), HistoryFix (N < 3) and the stabilization are exercised.
     GoldenSpec spec = cornellGolden("reblur", "graphs/reblur.json", false);
     spec.width = spec.height = 64;
+    // At 64 rows the resolution scale (referenceHeight 1080) leaves HistoryFix nothing to rebuild;
+    // as at 256 rows it rebuilds N = 0 from level 2 and N = 1 from level 1 (normal-aware).
+    spec.params = {{"hf", {{"referenceHeight", 256}}}};
     spec.frames = 4;
     EXPECT_TRUE(fovea::test::goldenMatches(ctx(), spec));
 }
@@ -185,6 +188,9 @@ TEST_F(GoldenTest, BMFRHistoryFix) {
     // graphs/bmfr_historyfix.json: HistoryFix after BMFR (count from bmfr.accumulated).
     GoldenSpec spec = cornellGolden("bmfr_historyfix", "graphs/bmfr_historyfix.json", false);
     spec.width = spec.height = 64;
+    // As for ReBLUR: HistoryFix's levels as at 256 rows, so the demodulated, normal-aware rebuild
+    // of frame 0 (every pixel N = 0) and of the dolly's disocclusions is in the golden.
+    spec.params = {{"hf", {{"referenceHeight", 256}}}};
     spec.frames = 4;
     EXPECT_TRUE(fovea::test::goldenMatches(ctx(), spec));
 }

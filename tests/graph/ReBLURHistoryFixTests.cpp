@@ -2,9 +2,13 @@
 // N >= historyFixFrames come out bit-exact; just-disoccluded pixels (N = 0) of a noisy plane have
 // a lower error with it than without (mips and stride); across a dark/bright depth edge the
 // rebuilt dark pixels stay within 5 % of their own plane; the count can come from a separate
-// input with an offset (BMFR: samples = N + 1).
+// input with an offset (BMFR: samples = N + 1); with albedo and emission connected a remodulated
+// colour (BMFR's filtered) is rebuilt without mixing an emitter or a wall colour into coplanar
+// neighbours (issue 13: HistoryFix after BMFR raised the error at a cut because of that); with
+// normal connected it does not average across a crease of equal depth.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -23,11 +27,16 @@ class HistoryFixTest : public GpuTest {};
 // Feed.color/depth[/motion as count] -> HistoryFix.
 class FixRig {
 public:
-    FixRig(gpu::Context& gpu, int w, int h, const std::string& params, bool separateCount = false)
+    FixRig(gpu::Context& gpu, int w, int h, const std::string& params, bool separateCount = false,
+           bool demodulate = false, bool withNormal = false)
         : mGpu(gpu), mGraph(gpu, test::reblurRegistry()), mW(w), mH(h) {
         std::string edges = R"({ "from": "feed.color", "to": "hf.color" },
                                { "from": "feed.depth", "to": "hf.depth" })";
         if (separateCount) edges += R"(, { "from": "feed.position", "to": "hf.count" })";
+        if (demodulate)
+            edges += R"(, { "from": "feed.albedo", "to": "hf.albedo" },
+                          { "from": "feed.emission", "to": "hf.emission" })";
+        if (withNormal) edges += R"(, { "from": "feed.normal", "to": "hf.normal" })";
         const std::string text =
             R"({ "version": 1, "name": "hf_test", "passes": [ { "name": "feed", "type": "Feed" },
                { "name": "hf", "type": "HistoryFix", "params": )" +
@@ -37,6 +46,11 @@ public:
         o.width = uint32_t(w);
         o.height = uint32_t(h);
         mGraph.build(graph::parseGraphText(text, "hf_test"), o);
+    }
+    void setNormal(const Image& normal) { target("feed.normal").uploadRGBA32F(mGpu, normal); }
+    void setGuides(const Image& albedo, const Image& emission) {
+        target("feed.albedo").uploadRGBA32F(mGpu, albedo);
+        target("feed.emission").uploadRGBA32F(mGpu, emission);
     }
     Image run(const Image& color, const Image& depth, const Image* count = nullptr) {
         target("feed.color").uploadRGBA32F(mGpu, color);
@@ -192,4 +206,81 @@ TEST_F(HistoryFixTest, ReferenceHeightShiftsTheLevel) {
     EXPECT_EQ(changed[3], 0);
     EXPECT_GT(changed[0], total[0] * 9 / 10);
     EXPECT_GT(changed[1], total[1] * 9 / 10);
+}
+
+// BMFR's filtered colour is y * albedo + emission (P2 §3.4). A noise-free y = 0.5 on one plane
+// (N = 0 everywhere, as after a cut) with albedo stripes 0.2 / 0.8 and an emissive square (5.0)
+// has nothing to rebuild: with albedo and emission connected both methods return the input
+// (1e-4 relative), without them the coarse data mixes the emitter and the stripes into their
+// coplanar neighbours (the depth test cannot see those edges) and some pixel moves by > 0.1.
+TEST_F(HistoryFixTest, DemodulatedRebuildKeepsEmitterAndAlbedoEdges) {
+    const int w = 48, h = 48;
+    const Image depth = test::facingPlane(w, h, 5.0f).depth;
+    Image albedo(size_t(w) * h * 4, 1.0f), emission(size_t(w) * h * 4, 0.0f), in(albedo.size());
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t i = (size_t(y) * w + x) * 4;
+            const float a = (x / 5) % 2 ? 0.8f : 0.2f;
+            const float e = x >= 17 && x < 29 && y >= 17 && y < 29 ? 5.0f : 0.0f;
+            for (int k = 0; k < 3; ++k) {
+                albedo[i + k] = a;
+                emission[i + k] = e;
+                in[i + k] = 0.5f * a + e;
+            }
+            in[i + 3] = 0.0f;  // N = 0: every pixel is rebuilt
+        }
+    for (const char* method : {"mips", "stride"}) {
+        const std::string params =
+            std::string(R"({ "method": ")") + method + R"(", "referenceHeight": 0 })";
+        FixRig plain(ctx(), w, h, params);
+        const Image mixed = plain.run(in, depth);
+        FixRig demod(ctx(), w, h, params, false, true);
+        demod.setGuides(albedo, emission);
+        const Image kept = demod.run(in, depth);
+        float worstMixed = 0.0f;
+        for (size_t i = 0; i < in.size(); i += 4)
+            for (int k = 0; k < 3; ++k) {
+                ASSERT_NEAR(kept[i + k], in[i + k], 1e-4f * in[i + k] + 1e-6f)
+                    << method << " pixel " << i / 4;
+                worstMixed = std::max(worstMixed, std::abs(mixed[i + k] - in[i + k]));
+            }
+        EXPECT_GT(worstMixed, 0.1f) << method << ": the test must see the mixing it guards against";
+    }
+}
+
+// A crease of equal depth (a box's top and front face meet at the same depth): one plane in
+// depth, the left part facing the camera (0.1), the right part turned by 90 degrees (1.0), every
+// pixel N = 0. Depth alone accepts the bright side's texels, so dark pixels near the crease rise;
+// with the normal connected (normalAngle 30) every rebuilt dark pixel stays within 5 % of 0.1.
+TEST_F(HistoryFixTest, NormalKeepsACreaseOfEqualDepth) {
+    const int w = 64, h = 32;
+    test::Geometry g = test::facingPlane(w, h, 5.0f);
+    Image in(size_t(w) * h * 4);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t i = (size_t(y) * w + x) * 4;
+            const bool dark = x < 29;
+            if (!dark) {
+                g.normal[i + 0] = 1.0f;  // turned by 90 degrees
+                g.normal[i + 2] = 0.0f;
+            }
+            in[i] = in[i + 1] = in[i + 2] = dark ? 0.1f : 1.0f;
+            in[i + 3] = 0.0f;
+        }
+    for (const char* method : {"mips", "stride"}) {
+        const std::string params = std::string(R"({ "method": ")") + method + "\" }";
+        FixRig plain(ctx(), w, h, params);
+        const Image mixed = plain.run(in, g.depth);
+        FixRig guided(ctx(), w, h, params, false, false, true);
+        guided.setNormal(g.normal);
+        const Image kept = guided.run(in, g.depth);
+        float worstMixed = 0.0f;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < 29; ++x) {
+                const size_t i = (size_t(y) * w + x) * 4;
+                ASSERT_NEAR(kept[i], 0.1f, 0.005f) << method << " " << x << "," << y;
+                worstMixed = std::max(worstMixed, mixed[i] - 0.1f);
+            }
+        EXPECT_GT(worstMixed, 0.05f) << method << ": depth alone must mix the crease";
+    }
 }

@@ -30,7 +30,9 @@ inline const graph::PassRegistry& reblurRegistry() {
                                                {"position", vk::Format::eR32G32B32A32Sfloat},
                                                {"depth", vk::Format::eR32Sfloat},
                                                {"motion", vk::Format::eR16G16Sfloat},
-                                               {"color", vk::Format::eR32G32B32A32Sfloat}};
+                                               {"color", vk::Format::eR32G32B32A32Sfloat},
+                                               {"albedo", vk::Format::eR32G32B32A32Sfloat},
+                                               {"emission", vk::Format::eR32G32B32A32Sfloat}};
         r.add({"Feed", "", [fields] { return std::make_unique<FeedPass>(fields); }});
         r.add({"RecurrentBlur", "", [] { return std::make_unique<passes::RecurrentBlurPass>(); }});
         r.add({"HistoryFix", "", [] { return std::make_unique<passes::HistoryFixPass>(); }});

@@ -113,6 +113,38 @@ TEST_F(ReBLURTest, FrameCountProgressionAndResets) {
     EXPECT_EQ(count(), 0.0f) << "a camera cut resets N";
 }
 
+// The normal test of the disocclusion (ours, disocclusionNormal 0.5): the same positions with the
+// normal turned by 90 degrees (a floor point in the plane of a box's side face: plane distance 0)
+// reset N; a 30-degree turn keeps it; with the test off (-1) the 90-degree turn keeps it too.
+TEST_F(ReBLURTest, TurnedNormalOnTheSamePlaneResets) {
+    const int w = 8, h = 8;
+    const Image in = test::constantImage(w, h, 0.4f, 0.5f, 0.6f);
+    auto turned = [&](float degrees) {
+        test::Geometry g = test::facingPlane(w, h, 10.0f);
+        const float a = degrees * 3.14159265f / 180.0f;
+        for (size_t i = 0; i < g.normal.size(); i += 4) {
+            g.normal[i] = std::sin(a);
+            g.normal[i + 2] = std::cos(a);
+        }
+        return g;
+    };
+    for (const char* params : {"{}", R"({ "disocclusionNormal": -1 })"}) {
+        ReblurRig rig(ctx(), w, h, params, "{}");
+        rig.init();
+        auto count = [&] { return rig.get("rbt.accumulated")[(size_t(4) * w + 4) * 4 + 3]; };
+        rig.setGeometry(turned(0.0f));
+        for (int f = 0; f < 5; ++f) rig.frame(in);
+        ASSERT_EQ(count(), 4.0f);
+        rig.setGeometry(turned(30.0f));
+        rig.frame(in);
+        EXPECT_EQ(count(), 5.0f) << params << ": 30 degrees keep the history";
+        rig.setGeometry(turned(120.0f));
+        rig.frame(in);
+        EXPECT_EQ(count(), std::string(params) == "{}" ? 0.0f : 6.0f)
+            << params << ": a 90-degree turn at plane distance 0";
+    }
+}
+
 // A noise-free constant passes every stage unchanged for 100 frames with all stages on
 // (pre-blur, firefly suppressor, HistoryFix, blur, post-blur, stabilization): every weighted sum
 // is normalized and nothing in the loop has a gain. Half of the pixels have no indirect hit.
