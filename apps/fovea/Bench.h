@@ -42,6 +42,7 @@ struct BenchSpec {
     std::string file, name;
     std::string scene, camera;  // camera: a camera path JSON, "" = the scene's still camera
     bool stereo = false;
+    bool sun = false;  // `sun`: --sun for every graph and the reference (glTF files without lights)
     uint32_t width = 0, height = 0, frames = 0, warmup = 1;
     uint64_t seed = 1;
     std::string output;

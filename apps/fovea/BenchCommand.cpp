@@ -43,7 +43,8 @@ SceneOptions sceneOptions(const BenchSpec& spec) {
     s.scene = spec.scene;
     s.camera = spec.camera;
     s.stereo = spec.stereo;
-    s.mono = !spec.stereo;       // the bench decides, not the graphs' defaults
+    s.mono = !spec.stereo;  // the bench decides, not the graphs' defaults
+    s.sun = spec.sun;
     s.ignoreGraphCamera = true;  // likewise the camera: the bench's path, else a still one
     return s;
 }
@@ -89,7 +90,7 @@ fs::path prepareReference(const BenchSpec& spec, const OutputFolder& out, const 
                       {"scene", spec.scene},   {"camera", spec.camera},
                       {"stereo", spec.stereo}, {"size", {spec.width, spec.height}},
                       {"seed", seed},          {"frames", spec.frames},
-                      {"warmup", spec.warmup}};
+                      {"sun", spec.sun},       {"warmup", spec.warmup}};
     const fs::path refDir = dir / folder;
     const bool moving = !spec.camera.empty();
     const fs::path result = moving ? refDir : refDir / "reference.exr";
@@ -248,8 +249,8 @@ int benchCommand(const BenchOptions& o) {
     std::optional<gpu::Context> device;
     gpu::Context& ctx = openDevice(device, o.device, o.validation, o.quiet);
     json referenceInfo, floorInfo;
-    const fs::path refPath = prepareReference(spec, folder, "reference", referenceSeed(spec.seed), ctx,
-                                              o.quiet, referenceInfo);
+    const fs::path refPath = prepareReference(spec, folder, "reference", referenceSeed(spec.seed),
+                                              ctx, o.quiet, referenceInfo);
     std::vector<MeasuredReference> references;
     references.push_back(
         {"reference",
@@ -258,8 +259,9 @@ int benchCommand(const BenchOptions& o) {
     for (auto& m : against) references.push_back(std::move(m));
     referenceInfo["mode"] = references[0].source.perFrame() ? "per-frame" : "single";
     if (spec.noiseFloorRender) {
-        const fs::path floorPath = prepareReference(
-            spec, folder, "reference_noise_floor", noiseFloorSeed(spec.seed), ctx, o.quiet, floorInfo);
+        const fs::path floorPath =
+            prepareReference(spec, folder, "reference_noise_floor", noiseFloorSeed(spec.seed), ctx,
+                             o.quiet, floorInfo);
         references[0].second.emplace(source(floorPath.string(), "/noise_floor"));
     } else if (fileFloor) {
         references[0].second = std::move(fileFloor);
@@ -296,6 +298,7 @@ int benchCommand(const BenchOptions& o) {
         {"scene", spec.scene},
         {"camera", spec.camera.empty() ? json("still") : json(spec.camera)},
         {"stereo", spec.stereo},
+        {"sun", spec.sun},
         {"size", {spec.width, spec.height}},
         {"frames", spec.frames},
         {"warmup", spec.warmup},

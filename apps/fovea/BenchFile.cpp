@@ -103,10 +103,10 @@ BenchSpec parseBenchFile(const fs::path& file) {
     json j = json::parse(stream, nullptr, false);
     if (j.is_discarded()) throw InputError(name, "", "not valid JSON");
     Reader r(name);
-    r.keys(
-        j, "",
-        {"version", "name", "description", "scene", "camera", "size", "stereo", "frames", "warmup",
-         "seed", "output", "reference", "noise_floor", "also_against", "layers", "graphs"});
+    r.keys(j, "",
+           {"version", "name", "description", "scene", "camera", "size", "stereo", "sun", "frames",
+            "warmup", "seed", "output", "reference", "noise_floor", "also_against", "layers",
+            "graphs"});
     BenchSpec spec;
     spec.file = name;
     if (r.count(r.need(j, "", "version"), "/version", 1, 1) != 1) r.fail("/version", "expected 1");
@@ -121,6 +121,10 @@ BenchSpec parseBenchFile(const fs::path& file) {
     if (j.contains("stereo")) {
         if (!j["stereo"].is_boolean()) r.fail("/stereo", "expected true or false");
         spec.stereo = j["stereo"].get<bool>();
+    }
+    if (j.contains("sun")) {
+        if (!j["sun"].is_boolean()) r.fail("/sun", "expected true or false");
+        spec.sun = j["sun"].get<bool>();
     }
     spec.frames = r.count(r.need(j, "", "frames"), "/frames", 1, 1u << 20);
     if (j.contains("warmup")) spec.warmup = r.count(j["warmup"], "/warmup", 0, 1u << 20);

@@ -132,6 +132,7 @@ TEST(CliBench, BadBenchFilesNameThePointer) {
         {[](json& j) { j["size"] = "32x32"; }, {"/size", "[width, height]"}},
         {[](json& j) { j["frames"] = "3"; }, {"/frames", "integer"}},
         {[](json& j) { j["warmup"] = 3; }, {"/warmup", "no measured frame"}},
+        {[](json& j) { j["sun"] = "yes"; }, {"/sun", "true or false"}},
         {[](json& j) { j["graphs"][1]["file"] = "nope.json"; }, {"/graphs/1/file", "nope.json"}},
         {[](json& j) { j["graphs"][0]["set"] = {"pt.spq=1"}; }, {"/graphs/0/set", "spq"}},
         {[](json& j) { j["graphs"][0]["label"] = 7; }, {"/graphs/0/label", "string"}},
@@ -228,4 +229,28 @@ TEST(CliBench, BenchCameraOverridesTheGraphsDefaultCamera) {
                       (tmp / "run").string(), "--quiet"});
     EXPECT_NE(run.code, 0);
     EXPECT_TRUE(contains(run.err, "no_such_camera_path.json")) << run.describe();
+}
+
+TEST(CliBench, SunLightsAGltfWithoutLightsForGraphsAndReference) {
+    // tinygltf's cube has no light: without `sun` graph and reference are black (error 0); with
+    // it both are lit by run --sun's light, so the error is that of a 1-spp image against 2 spp.
+    TempDir tmp;
+    json spec = tinyBench();
+    spec["scene"] = (kRepo / ".." / "shared" / "scenes" / "tinygltf-cube" / "Cube.gltf").string();
+    spec["size"] = {16, 16};
+    spec["frames"] = 2;
+    spec["reference"] = {{"render", {{"spp", 2}}}};
+    spec["graphs"] = {{{"label", "a"}, {"file", kGraph.string()}}};
+    double rmse[2] = {};
+    for (bool sun : {false, true}) {
+        spec["sun"] = sun;
+        const std::string out = sun ? "sun" : "dark";
+        Result r = bench(tmp, spec, out);
+        ASSERT_EQ(r.code, 0) << r.describe();
+        const json j = json::parse(readText(tmp / out / "bench.json"));
+        EXPECT_EQ(j.at("sun"), sun);
+        rmse[sun] = j["graphs"][0]["errors"]["mean"]["rmse"].get<double>();
+    }
+    EXPECT_EQ(rmse[0], 0.0);
+    EXPECT_GT(rmse[1], 1e-3);
 }
