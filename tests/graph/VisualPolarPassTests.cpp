@@ -407,7 +407,7 @@ TEST_F(VisualPolarPassTest, BmfrHistoryFollowsVisualPolarMotion) {
         { "from": "gb.visibility", "to": "pt.visibility" }, { "from": "gb.albedo", "to": "pt.albedo" },
         { "from": "pt.demodulated", "to": "bmfr.color" }, { "from": "gb.position", "to": "bmfr.position" },
         { "from": "gb.normal", "to": "bmfr.normal" }, { "from": "gb.albedo", "to": "bmfr.albedo" },
-        { "from": "gb.motion", "to": "bmfr.motion" } ],
+        { "from": "gb.motion", "to": "bmfr.motion" }, { "from": "warp.vp", "to": "bmfr.vp" } ],
       "outputs": [ "bmfr.accumulated", "gb.position", "gb.motion" ] })";
     CompileOptions o;
     o.width = o.height = n;
