@@ -89,6 +89,10 @@ void SVGFPass::reflect(graph::Reflection& r) const {
         .floatOnly()
         .optional()
         .doc("previous pixel - current pixel; open: reproject positions through the camera");
+    r.input("vp").buffer(64).optional().doc(
+        "VisualPolarWarp `vp` block (with a Visual-Polar `color` and GBuffer VP `motion`): "
+        "history taps and the 3x3 fallback at each column's own phi height, wrapped on phi "
+        "(P5 §3.3; the a-trous taps stay in texel addressing); open: screen addressing");
 
     const auto rgba32 = vk::Format::eR32G32B32A32Sfloat;
     r.output("filtered", rgba32).sameAs("color").doc("final colour: last level remodulated, a = 1");
@@ -137,10 +141,13 @@ void SVGFPass::validate(const graph::ValidateContext& ctx) const {
     if (mFeedbackTap > mIterations)
         ctx.fail("feedbackTap", "must be at most `iterations` (" + std::to_string(mIterations) +
                                     "): there is no level " + std::to_string(mFeedbackTap));
+    if (ctx.connected("vp") && !ctx.connected("motion"))
+        ctx.fail("vp", "a Visual-Polar image needs the input 'motion' (GBuffer VP motion)");
 }
 
 void SVGFPass::compile(graph::CompileContext& ctx) {
     mUseMotion = ctx.connected("motion");
+    mUseVp = ctx.connected("vp");
     mUseAlbedo = ctx.connected("albedo");
     mUseEmission = ctx.connected("emission");
     mReproject = ctx.createPipeline("svgf/reproject.comp");
@@ -169,6 +176,7 @@ void SVGFPass::execute(graph::ExecuteContext& ctx) {
     mReproject->set("size", size)
         .set("history", int(history))
         .set("useMotion", int(mUseMotion))
+        .set("useVp", int(mUseVp))
         .set("writeColorHistory", int(mFeedbackTap == 0))
         .set("alpha", mAlpha)
         .set("momentsAlpha", mMomentsAlpha)
