@@ -91,8 +91,9 @@ void SVGFPass::reflect(graph::Reflection& r) const {
         .doc("previous pixel - current pixel; open: reproject positions through the camera");
     r.input("vp").buffer(64).optional().doc(
         "VisualPolarWarp `vp` block (with a Visual-Polar `color` and GBuffer VP `motion`): "
-        "history taps and the 3x3 fallback at each column's own phi height, wrapped on phi "
-        "(P5 §3.3; the a-trous taps stay in texel addressing); open: screen addressing");
+        "history taps, 3x3 fallback, spatial-variance and a-trous taps at each column's own "
+        "phi height, wrapped on phi (P5 §3.3; the depth gradient stays in texel addressing); "
+        "open: screen addressing");
 
     const auto rgba32 = vk::Format::eR32G32B32A32Sfloat;
     r.output("filtered", rgba32).sameAs("color").doc("final colour: last level remodulated, a = 1");
@@ -193,6 +194,7 @@ void SVGFPass::execute(graph::ExecuteContext& ctx) {
     mVariance->bind("atrous_out", *ping);
     mVariance->set("size", size)
         .set("radius", mSpatialRadius)
+        .set("useVp", int(mUseVp))
         .set("historyForVariance", mHistoryForVariance)
         .set("sigmaNormal", mSigmaNormal)
         .set("sigmaDepth", mSigmaDepth);
@@ -203,6 +205,7 @@ void SVGFPass::execute(graph::ExecuteContext& ctx) {
     mATrous->set("size", size)
         .set("useAlbedo", int(mUseAlbedo))
         .set("useEmission", int(mUseEmission))
+        .set("useVp", int(mUseVp))
         .set("sigmaLuminance", mSigmaLuminance)
         .set("sigmaNormal", mSigmaNormal)
         .set("sigmaDepth", mSigmaDepth);
