@@ -94,6 +94,10 @@ void BMFRPass::reflect(graph::Reflection& r) const {
         .floatOnly()
         .optional()
         .doc("previous pixel - current pixel; open: reproject positions through the camera");
+    r.input("vp").buffer(64).optional().doc(
+        "VisualPolarWarp `vp` block (with a Visual-Polar `color` and GBuffer VP `motion`): "
+        "history taps at each column's own phi height, wrapped on phi (P5 §3.3); open: "
+        "screen addressing");
 
     const auto rgba32 = vk::Format::eR32G32B32A32Sfloat;
     r.output("filtered", rgba32)
@@ -143,6 +147,8 @@ void BMFRPass::reflect(graph::Reflection& r) const {
 void BMFRPass::validate(const graph::ValidateContext& ctx) const {
     if (mFeatures == "albedo" && !ctx.connected("albedo"))
         ctx.fail("features", "'albedo' needs the input 'albedo' connected");
+    if (ctx.connected("vp") && !ctx.connected("motion"))
+        ctx.fail("vp", "a Visual-Polar image needs the input 'motion' (GBuffer VP motion)");
 }
 
 void BMFRPass::compile(graph::CompileContext& ctx) {
@@ -150,6 +156,7 @@ void BMFRPass::compile(graph::CompileContext& ctx) {
     mUseMotion = ctx.connected("motion");
     mUseAlbedo = ctx.connected("albedo");
     mUseEmission = ctx.connected("emission");
+    mUseVp = ctx.connected("vp");
     const std::vector<std::pair<std::string, std::string>> defines = {
         {"BMFR_ALBEDO", albedoFeature ? "1" : "0"},
         {"BMFR_FP16_HISTORY", mFp16History ? "1" : "0"}};
@@ -206,7 +213,8 @@ void BMFRPass::execute(graph::ExecuteContext& ctx) {
         .set("alpha", mAlpha1)
         .set("maxCount", kMaxCount)
         .set("positionThreshold", mPositionThreshold)
-        .set("normalThreshold", mNormalThreshold);
+        .set("normalThreshold", mNormalThreshold)
+        .set("useVp", int(mUseVp));
     mAccumulate->dispatch(cmd, out.width(), out.height());
     gpu::computeToComputeBarrier(cmd);
     stamp(1);
@@ -242,7 +250,8 @@ void BMFRPass::execute(graph::ExecuteContext& ctx) {
         .set("useAlbedo", int(mUseAlbedo))
         .set("useEmission", int(mUseEmission))
         .set("alpha", mAlpha3)
-        .set("maxCount", kMaxCount);
+        .set("maxCount", kMaxCount)
+        .set("useVp", int(mUseVp));
     mSecond->dispatch(cmd, out.width(), out.height());
     stamp(4);
     mTimingsPending = mTimestamps != nullptr;

@@ -60,7 +60,7 @@ private:
 
     // State.
     int mBlocksX = 0, mBlocksY = 0;
-    bool mUseMotion = false, mUseAlbedo = false, mUseEmission = false;
+    bool mUseMotion = false, mUseAlbedo = false, mUseEmission = false, mUseVp = false;
     std::unique_ptr<gpu::ComputePipeline> mAccumulate, mFit, mWeightedSum, mSecond;
     std::unique_ptr<gpu::TimestampPool> mTimestamps;
     bool mTimingsPending = false;

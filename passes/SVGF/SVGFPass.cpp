@@ -89,6 +89,11 @@ void SVGFPass::reflect(graph::Reflection& r) const {
         .floatOnly()
         .optional()
         .doc("previous pixel - current pixel; open: reproject positions through the camera");
+    r.input("vp").buffer(64).optional().doc(
+        "VisualPolarWarp `vp` block (with a Visual-Polar `color` and GBuffer VP `motion`): "
+        "history taps, 3x3 fallback, spatial-variance and a-trous taps at each column's own "
+        "phi height, wrapped on phi (P5 §3.3; the depth gradient stays in texel addressing); "
+        "open: screen addressing");
 
     const auto rgba32 = vk::Format::eR32G32B32A32Sfloat;
     r.output("filtered", rgba32).sameAs("color").doc("final colour: last level remodulated, a = 1");
@@ -137,10 +142,13 @@ void SVGFPass::validate(const graph::ValidateContext& ctx) const {
     if (mFeedbackTap > mIterations)
         ctx.fail("feedbackTap", "must be at most `iterations` (" + std::to_string(mIterations) +
                                     "): there is no level " + std::to_string(mFeedbackTap));
+    if (ctx.connected("vp") && !ctx.connected("motion"))
+        ctx.fail("vp", "a Visual-Polar image needs the input 'motion' (GBuffer VP motion)");
 }
 
 void SVGFPass::compile(graph::CompileContext& ctx) {
     mUseMotion = ctx.connected("motion");
+    mUseVp = ctx.connected("vp");
     mUseAlbedo = ctx.connected("albedo");
     mUseEmission = ctx.connected("emission");
     mReproject = ctx.createPipeline("svgf/reproject.comp");
@@ -169,6 +177,7 @@ void SVGFPass::execute(graph::ExecuteContext& ctx) {
     mReproject->set("size", size)
         .set("history", int(history))
         .set("useMotion", int(mUseMotion))
+        .set("useVp", int(mUseVp))
         .set("writeColorHistory", int(mFeedbackTap == 0))
         .set("alpha", mAlpha)
         .set("momentsAlpha", mMomentsAlpha)
@@ -185,6 +194,7 @@ void SVGFPass::execute(graph::ExecuteContext& ctx) {
     mVariance->bind("atrous_out", *ping);
     mVariance->set("size", size)
         .set("radius", mSpatialRadius)
+        .set("useVp", int(mUseVp))
         .set("historyForVariance", mHistoryForVariance)
         .set("sigmaNormal", mSigmaNormal)
         .set("sigmaDepth", mSigmaDepth);
@@ -195,6 +205,7 @@ void SVGFPass::execute(graph::ExecuteContext& ctx) {
     mATrous->set("size", size)
         .set("useAlbedo", int(mUseAlbedo))
         .set("useEmission", int(mUseEmission))
+        .set("useVp", int(mUseVp))
         .set("sigmaLuminance", mSigmaLuminance)
         .set("sigmaNormal", mSigmaNormal)
         .set("sigmaDepth", mSigmaDepth);

@@ -40,7 +40,7 @@ private:
     float mNormalThreshold = 0.9f;
 
     // State.
-    bool mUseMotion = false, mUseAlbedo = false, mUseEmission = false;
+    bool mUseMotion = false, mUseAlbedo = false, mUseEmission = false, mUseVp = false;
     std::unique_ptr<gpu::ComputePipeline> mReproject, mVariance, mATrous;
 };
 

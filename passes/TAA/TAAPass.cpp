@@ -32,6 +32,10 @@ void TAAPass::reflect(graph::Reflection& r) const {
         "passed through");
     r.input("motion").optional().floatOnly().sameAs("color").doc(
         "GBuffer motion: previous pixel - current pixel, jitter-free; open = still camera");
+    r.input("vp").buffer(64).optional().doc(
+        "VisualPolarWarp `vp` block (with a Visual-Polar `color` and GBuffer VP `motion`): 3x3 "
+        "neighbours and bilinear history taps wrap on phi at each column's own phi height "
+        "(P5 §3.3; historyFilter is then bilinear); open: screen addressing");
     r.output("result", vk::Format::eR32G32B32A32Sfloat)
         .sameAs("color")
         .history(1)
@@ -42,7 +46,8 @@ void TAAPass::reflect(graph::Reflection& r) const {
 
 void TAAPass::compile(graph::CompileContext& ctx) {
     mUseMotion = ctx.connected("motion");
-    mVariant = mClip + "," + mHistoryFilter + (mUseMotion ? ",motion" : "");
+    mUseVp = ctx.connected("vp");
+    mVariant = mClip + "," + mHistoryFilter + (mUseMotion ? ",motion" : "") + (mUseVp ? ",vp" : "");
     mPipeline = ctx.createPipeline("taa/taa.comp");
 }
 
@@ -63,7 +68,8 @@ void TAAPass::execute(graph::ExecuteContext& ctx) {
         .set("gamma", mGamma)
         .set("catmullRom", int(mHistoryFilter == "catmull-rom"))
         .set("useHistory", int(useHistory))
-        .set("useMotion", int(mUseMotion));
+        .set("useMotion", int(mUseMotion))
+        .set("useVp", int(mUseVp));
     mPipeline->dispatch(ctx.cmd(), out.width(), out.height());
 }
 

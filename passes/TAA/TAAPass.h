@@ -24,7 +24,7 @@ private:
     float mGamma = 1.0f;
     std::string mHistoryFilter = "bilinear";
     int mEyes = 0;
-    bool mUseMotion = false;
+    bool mUseMotion = false, mUseVp = false;
     std::string mVariant;
     std::unique_ptr<gpu::ComputePipeline> mPipeline;
 };

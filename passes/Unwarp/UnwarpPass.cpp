@@ -9,8 +9,9 @@
 namespace fovea::passes {
 
 namespace {
-constexpr int kMaxLevels = 4;  // level 0 (the input) + mip1..mip3
-}
+constexpr int kMaxLevels = 4;           // level 0 (the input) + mip1..mip3
+constexpr uint64_t kKeyBytes = 5 * 16;  // unwarp.comp: uvec4 key[5]
+}  // namespace
 
 void UnwarpPass::params(graph::ParamVisitor& v) {
     v.add("levels", mLevels, 4,
@@ -25,6 +26,10 @@ void UnwarpPass::params(graph::ParamVisitor& v) {
           "eccentricity (degrees, from the camera's vertical field of view) where sigma reaches "
           "blurSigma; sigma rises linearly from 0 at the fovea's edge",
           {1, 90});
+    v.add("cache", mCache, true,
+          "keep the per-pixel sampling positions, mip level and blur sigma (P5 §3.4: precomputed "
+          "per gaze and size) and recompute them only when the mapping, the field of view or "
+          "these parameters change; false = every frame (benchmarks; same image)");
 }
 
 void UnwarpPass::reflect(graph::Reflection& r) const {
@@ -39,14 +44,26 @@ void UnwarpPass::reflect(graph::Reflection& r) const {
     r.internal("mip3", rgba32).sameAs("color").doc("phi mip level 3");
     r.internal("unwarped", rgba32).doc("the mapped image before the blur");
     r.internal("blur_tmp", rgba32).doc("after the horizontal blur pass");
-    r.internal("sigma", vk::Format::eR32Sfloat)
-        .doc("the blur's sigma per pixel (computed once by the mapping dispatch)");
+    r.internal("lookup", rgba32)
+        .persistent()
+        .doc(
+            "per pixel: rho, t, mip level and the blur's sigma (P5 §3.4-3.5), kept while the "
+            "mapping key does not change");
+    r.internal("lookup_key", vk::Format::eUndefined)
+        .buffer(kKeyBytes)
+        .persistent()
+        .doc("the mapping key `lookup` was built for (unwarp.comp mappingKey)");
 }
 
 void UnwarpPass::compile(graph::CompileContext& ctx) {
     mMips = ctx.createPipeline("visual_polar/phi_mips.comp");
     mMap = ctx.createPipeline("visual_polar/unwarp.comp");
     mBlurPipeline = ctx.createPipeline("visual_polar/foveated_blur.comp");
+    mKeyStored = false;  // a new lookup_key buffer holds no key yet
+}
+
+void UnwarpPass::onReset() {
+    mKeyStored = false;
 }
 
 void UnwarpPass::execute(graph::ExecuteContext& ctx) {
@@ -61,14 +78,21 @@ void UnwarpPass::execute(graph::ExecuteContext& ctx) {
         mMips->dispatch(ctx.cmd(), vpImage.width(), (vpImage.height() + 1) / 2);
         gpu::computeToComputeBarrier(ctx.cmd());
     }
-    // P5 §3.5: sigma per pixel from its eccentricity, written by the mapping dispatch.
+    // P5 §3.4-3.5: the sampling positions and sigma per pixel come from `lookup`, rebuilt by the
+    // mapping dispatch when its key changed; then the key of this frame is stored.
     const float sigmaMax = mBlurSigma * float(out.height()) / 1440.0f;
     ctx.bindFields(*mMap);
     mMap->set("levels", uint32_t(levels))
         .set("toResult", uint32_t(!mBlur))
         .set("sigmaMax", sigmaMax)
-        .set("blurDegrees", mBlurDegrees);
+        .set("blurDegrees", mBlurDegrees)
+        .set("useCache", uint32_t(mCache && mKeyStored))
+        .set("mode", 0u);
     mMap->dispatch(ctx.cmd(), out.width(), out.height());
+    gpu::computeToComputeBarrier(ctx.cmd());
+    mMap->set("mode", 1u);
+    mMap->dispatch(ctx.cmd(), 1, 1);
+    mKeyStored = true;
     if (!mBlur) return;
     // Two separable passes.
     ctx.bindFields(*mBlurPipeline);

@@ -15,12 +15,15 @@ public:
     bool usesCamera() const override { return true; }
     void compile(graph::CompileContext& ctx) override;
     void execute(graph::ExecuteContext& ctx) override;
+    void onReset() override;
 
 private:
     int mLevels = 4;
     bool mBlur = true;
     float mBlurSigma = 6.8f;
     float mBlurDegrees = 30.0f;
+    bool mCache = true;
+    bool mKeyStored = false;  // lookup_key holds the key of the last rebuild
     std::unique_ptr<gpu::ComputePipeline> mMips, mMap, mBlurPipeline;
 };
 

@@ -9,6 +9,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "bmfr/bmfr_common.glsl"
 #include "common/camera.glsl"
+#include "bmfr/bmfr_reprojection.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -35,6 +36,7 @@ layout(push_constant) uniform Params {
     float maxCount;  // sample-count saturation (CMA weight 1 / (n + 1) is below alpha long before)
     float positionThreshold;   // relative to the pixel's distance from the camera
     float normalThreshold;     // minimum cosine between normals
+    int useVp;  // 1: a Visual-Polar image (the `vp` block): motion and taps in VP addressing
 } pc;
 
 void main() {
@@ -68,6 +70,15 @@ void main() {
             vec2 m = texelFetch(motion, p, 0).xy;
             ok = bmfrFinite3(vec3(m, 0.0));
             prev = vec2(p) + 0.5 + m;
+            if (pc.useVp != 0) {
+                // P5 §3.3: motion rows are rows of this texel's column; prev becomes (x, t).
+                uint eye = min(uint(p.x) / max(vp.grid.x, 1u), clamp(vp.grid.z, 1u, 2u) - 1u);
+                VisualPolarMap vm = vpMapOfEye(eye);
+                ivec2 local = p - ivec2(int(eye * vm.width), 0);
+                prev = vpMovedPosition(vm, local, m);
+                // Clamped on rho (as the taps are) so that prev.x names this eye's columns only.
+                prev.x = clamp(prev.x, 0.5, float(vm.width) - 0.5) + float(eye * vm.width);
+            }
         } else {
             ok = cameraPreviousPixel(cameraEyeOf(uint(p.x)), w.xyz, prev);
         }
@@ -77,11 +88,9 @@ void main() {
     float count = 0.0;
     uint mask = 0u;
     if (ok) {
-        vec2 q = prev - 0.5;
-        // |q| is bounded by cameraPreviousPixel's finite result; floor of a huge value is still a
-        // tap outside the image, which the bounds test rejects.
-        ivec2 base = ivec2(floor(clamp(q, vec2(-2.0), vec2(pc.size) + 1.0)));
-        vec2 f = clamp(q - vec2(base), 0.0, 1.0);
+        ivec2 taps[4];
+        float weights[4];
+        bmfrHistoryTaps(pc.useVp != 0, pc.size, prev, taps, weights);
         float wsum = 0.0;
         // The position test scales with the distance to the eye (the pixel footprint grows with
         // it), so the threshold needs no scene units: 1e4 units away or in a 555-unit Cornell box
@@ -90,8 +99,7 @@ void main() {
         float limit = pc.positionThreshold * length(w.xyz - camera_info.eyes[eye].position.xyz);
         float limit2 = limit * limit;
         for (int i = 0; i < 4; ++i) {
-            ivec2 o = ivec2(i & 1, i >> 1);
-            ivec2 t = base + o;
+            ivec2 t = taps[i];
             if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, pc.size))) continue;
             vec4 pw = imageLoad(prev_hist_position, t);
             vec3 pn = imageLoad(prev_hist_normal, t).xyz;
@@ -99,7 +107,7 @@ void main() {
             vec3 d = pw.xyz - w.xyz;
             if (!(dot(d, d) <= limit2)) continue;
             if (!(dot(pn, n) >= pc.normalThreshold)) continue;
-            float bw = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+            float bw = weights[i];
             vec4 h = imageLoad(prev_hist_accum, t);
             hist += bw * h.rgb;
             count += bw * h.a;

@@ -5,6 +5,7 @@
 // filtered = x * albedo' + emission, albedo' = albedo where > 1e-3 else 1, per channel.
 #extension GL_GOOGLE_include_directive : require
 #include "bmfr/bmfr_common.glsl"
+#include "bmfr/bmfr_reprojection.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -22,6 +23,7 @@ layout(push_constant) uniform Params {
     int useEmission;
     float alpha;     // P2 §3.5: 0.1
     float maxCount;
+    int useVp;  // 1: a Visual-Polar image: rp.xy is (x, t = phi / 2 pi), VP taps
 } pc;
 
 void main() {
@@ -34,15 +36,15 @@ void main() {
     vec3 hist = vec3(0.0);
     float count = 0.0;
     if (mask != 0u) {
-        vec2 q = rp.xy - 0.5;
-        ivec2 base = ivec2(floor(q));  // finite: mask != 0 means phase I accepted a tap here
-        vec2 f = clamp(q - vec2(base), 0.0, 1.0);
+        // Finite: mask != 0 means phase I accepted a tap here (and computed the same taps).
+        ivec2 taps[4];
+        float weights[4];
+        bmfrHistoryTaps(pc.useVp != 0, pc.size, rp.xy, taps, weights);
         float wsum = 0.0;
         for (int i = 0; i < 4; ++i) {
             if ((mask & (1u << i)) == 0u) continue;
-            ivec2 o = ivec2(i & 1, i >> 1);
-            float bw = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
-            vec4 h = imageLoad(prev_hist_filtered, base + o);  // in bounds: phase I checked it
+            float bw = weights[i];
+            vec4 h = imageLoad(prev_hist_filtered, taps[i]);  // in bounds: phase I checked it
             hist += bw * h.rgb;
             count += bw * h.a;
             wsum += bw;

@@ -105,6 +105,39 @@ ivec2 vpNeighbour(VisualPolarMap m, ivec2 texel, ivec2 step) {
     return ivec2(i1, clamp(int(floor(fract(t) * n1)), 0, int(n1) - 1));
 }
 
+// The continuous previous position of texel `texel` (eye-local column, row) moved by a GBuffer
+// Visual-Polar motion vector (columns, rows of the texel's own column): x in columns (texel
+// centres at +0.5), y = t = phi / 2 pi (any real: wrapped by vpBilinearTaps).
+vec2 vpMovedPosition(VisualPolarMap m, ivec2 texel, vec2 motion) {
+    uint column = uint(clamp(texel.x, 0, int(m.width) - 1));
+    float n = float(vpRows(m, column));  // >= 1
+    return vec2(float(texel.x) + 0.5 + motion.x, (float(texel.y) + 0.5 + motion.y) / n);
+}
+
+// P5 §3.3/§3.4: the 4 bilinear taps of a continuous VP position (x in eye-local columns, t =
+// phi / 2 pi) in temporal reprojection. Tap k = (k & 1, k >> 1): column c0 + (k & 1), and in
+// that column the row r0 + (k >> 1) at the column's OWN height n(c) (a row index means a
+// different phi in columns of different heights: the fovea's triangular clip), wrapped on phi
+// (no seam at phi = 0). Columns are clamped on rho. Texels are eye-local; weights sum to 1.
+void vpBilinearTaps(VisualPolarMap m, vec2 position, out ivec2 taps[4], out float weights[4]) {
+    float x = position.x - 0.5;
+    float c0f = floor(x);
+    float fx = clamp(x - c0f, 0.0, 1.0);
+    for (int side = 0; side < 2; ++side) {
+        int c = clamp(int(c0f) + side, 0, int(m.width) - 1);
+        int n = int(vpRows(m, uint(c)));  // >= 1
+        float y = fract(position.y) * float(n) - 0.5;
+        float r0f = floor(y);
+        float fy = clamp(y - r0f, 0.0, 1.0);
+        int r0 = (int(r0f) % n + n) % n;  // r0f >= -1
+        float wx = side == 1 ? fx : 1.0 - fx;
+        taps[side] = ivec2(c, r0);
+        taps[side + 2] = ivec2(c, (r0 + 1) % n);
+        weights[side] = wx * (1.0 - fy);
+        weights[side + 2] = wx * fy;
+    }
+}
+
 // Rows of column `column` at phi-mip level `level`: ceil(n / 2^level), >= 1.
 uint vpRowsAtLevel(VisualPolarMap m, uint column, uint level) {
     return (vpRows(m, column) + (1u << level) - 1u) >> level;

@@ -13,6 +13,8 @@
 // writes the colour history (§4.1: the first level's output); the last level remodulates.
 #extension GL_GOOGLE_include_directive : require
 #include "svgf/svgf_common.glsl"
+#define VISUAL_POLAR_PARAMS
+#include "common/visual_polar.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -37,6 +39,8 @@ layout(push_constant) uniform Params {
     float sigmaLuminance;
     float sigmaNormal;
     float sigmaDepth;
+    int useVp;  // 1: a Visual-Polar image: taps through vpNeighbour (phi wrapped, per-column
+                // heights; P5 §3.3)
 } pc;
 
 const float kB3[3] = float[3](3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);  // indexed by |offset|
@@ -50,6 +54,19 @@ float prefilteredVariance(ivec2 p) {
             v += k * imageLoad(atrous_in, svgfClamp(p + ivec2(dx, dy), pc.size)).a;
         }
     return max(v, 0.0);  // variances are >= 0; the clamp guards the sqrt below
+}
+
+// The tap at offset `off` from texel p: screen addressing, or on a Visual-Polar image the
+// neighbour at that offset wrapped on phi at the target column's own height (visual_polar.glsl).
+ivec2 svgfTap(ivec2 p, ivec2 off) {
+    if (pc.useVp == 0) return p + off;
+    uint eye = min(uint(p.x) / max(vp.grid.x, 1u), clamp(vp.grid.z, 1u, 2u) - 1u);
+    VisualPolarMap m = vpMapOfEye(eye);
+    ivec2 x0 = ivec2(int(eye * m.width), 0);
+    int column = p.x - x0.x + off.x;
+    // Beyond the rho range: no tap (the bounds test skips it), as off the screen's edge.
+    if (column < 0 || column >= int(m.width)) return ivec2(-1);
+    return vpNeighbour(m, p - x0, off) + x0;
 }
 
 void main() {
@@ -72,7 +89,7 @@ void main() {
             for (int dx = -2; dx <= 2; ++dx) {
                 if (dx == 0 && dy == 0) continue;
                 ivec2 off = pc.stepSize * ivec2(dx, dy);
-                ivec2 q = p + off;
+                ivec2 q = svgfTap(p, off);
                 if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, pc.size))) continue;
                 float zq = svgfDepthAt(depth, q);
                 if (zq <= 0.0 || !(imageLoad(accumulated, q).a > 0.0)) continue;

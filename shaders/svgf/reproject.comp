@@ -11,6 +11,8 @@
 #extension GL_GOOGLE_include_directive : require
 #include "svgf/svgf_common.glsl"
 #include "common/camera.glsl"
+#define VISUAL_POLAR_PARAMS
+#include "common/visual_polar.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -42,6 +44,7 @@ layout(push_constant) uniform Params {
     float maxHistory;
     float positionThreshold;  // relative to the pixel's view depth
     float normalThreshold;    // minimum cosine
+    int useVp;  // 1: a Visual-Polar image (the `vp` block): VP history taps and 3x3 fallback
 } pc;
 
 // Tap test (disocclusion, §4.1): inside, held data, same surface.
@@ -82,28 +85,51 @@ void main() {
     bool valid = false;
     if (hit && pc.history != 0) {
         vec2 prev = vec2(-1.0);
+        vec2 mv = vec2(0.0);
         bool ok;
         if (pc.useMotion != 0) {
             vec2 m = texelFetch(motion, p, 0).xy;
             ok = svgfFinite(m.x) && svgfFinite(m.y);
             if (!ok) atomicAdd(stats.counters[SVGF_STAT_NONFINITE_GEOMETRY], 1u);
-            prev = vec2(p) + 0.5 + (ok ? m : vec2(0.0));
+            mv = ok ? m : vec2(0.0);
+            prev = vec2(p) + 0.5 + mv;
         } else {
             ok = cameraPreviousPixel(cameraEyeOf(uint(p.x)), w.xyz, prev);
         }
+        // Visual-Polar (seed 003 P5 §3.3): motion rows are rows of this texel's column; the taps
+        // sit at each column's own phi height, wrapped on phi (visual_polar.glsl).
+        VisualPolarMap vm;
+        int x0 = 0;
+        if (pc.useVp != 0) {
+            uint eye = min(uint(p.x) / max(vp.grid.x, 1u), clamp(vp.grid.z, 1u, 2u) - 1u);
+            vm = vpMapOfEye(eye);
+            x0 = int(eye * vm.width);
+            prev = vpMovedPosition(vm, p - ivec2(x0, 0), mv);  // eye-local (x, t)
+        }
         if (ok) {
+            ivec2 taps[4];
+            float weights[4];
             // Clamping keeps floor() of a huge value well defined; such taps fail the bounds test.
             vec2 q = clamp(prev - 0.5, vec2(-4.0), vec2(pc.size) + 4.0);
-            ivec2 base = ivec2(floor(q));
-            vec2 f = clamp(q - vec2(base), 0.0, 1.0);
+            if (pc.useVp != 0) {
+                vpBilinearTaps(vm, prev, taps, weights);
+                for (int i = 0; i < 4; ++i) taps[i].x += x0;
+            } else {
+                ivec2 base = ivec2(floor(q));
+                vec2 f = clamp(q - vec2(base), 0.0, 1.0);
+                for (int i = 0; i < 4; ++i) {
+                    ivec2 o = ivec2(i & 1, i >> 1);
+                    taps[i] = base + o;
+                    weights[i] = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+                }
+            }
             float limit = pc.positionThreshold * z;
             float limit2 = limit * limit;
             float wsum = 0.0;
             for (int i = 0; i < 4; ++i) {
-                ivec2 o = ivec2(i & 1, i >> 1);
-                ivec2 t = base + o;
+                ivec2 t = taps[i];
                 if (!tapValid(t, w.xyz, n, limit2)) continue;
-                float bw = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+                float bw = weights[i];
                 histC += bw * imageLoad(prev_hist_color, t).rgb;
                 histM += bw * imageLoad(prev_hist_moments, t).xy;
                 histH += bw * imageLoad(prev_hist_length, t).x;
@@ -121,9 +147,16 @@ void main() {
                 histH = 0.0;
                 float count = 0.0;
                 ivec2 centre = ivec2(floor(q + 0.5));  // the pixel holding prev (q is clamped)
+                if (pc.useVp != 0) {
+                    // The texel holding prev in its own column (x clamped on rho, t wrapped).
+                    int c = clamp(int(floor(prev.x)), 0, int(vm.width) - 1);
+                    float rows = float(vpRows(vm, uint(c)));  // >= 1
+                    centre = ivec2(c, min(int(fract(prev.y) * rows), int(rows) - 1));
+                }
                 for (int dy = -1; dy <= 1; ++dy)
                     for (int dx = -1; dx <= 1; ++dx) {
                         ivec2 t = centre + ivec2(dx, dy);
+                        if (pc.useVp != 0) t = vpNeighbour(vm, centre, ivec2(dx, dy)) + ivec2(x0, 0);
                         if (!tapValid(t, w.xyz, n, limit2)) continue;
                         histC += imageLoad(prev_hist_color, t).rgb;
                         histM += imageLoad(prev_hist_moments, t).xy;

@@ -14,6 +14,8 @@
 // radiance units.
 #extension GL_GOOGLE_include_directive : require
 #include "svgf/svgf_common.glsl"
+#define VISUAL_POLAR_PARAMS
+#include "common/visual_polar.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -30,7 +32,22 @@ layout(push_constant) uniform Params {
     float historyForVariance;
     float sigmaNormal;
     float sigmaDepth;
+    int useVp;  // 1: a Visual-Polar image: taps through vpNeighbour (phi wrapped, per-column
+                // heights; P5 §3.3)
 } pc;
+
+// The tap at offset `off` from texel p: screen addressing, or on a Visual-Polar image the
+// neighbour at that offset wrapped on phi at the target column's own height (visual_polar.glsl).
+ivec2 svgfTap(ivec2 p, ivec2 off) {
+    if (pc.useVp == 0) return p + off;
+    uint eye = min(uint(p.x) / max(vp.grid.x, 1u), clamp(vp.grid.z, 1u, 2u) - 1u);
+    VisualPolarMap m = vpMapOfEye(eye);
+    ivec2 x0 = ivec2(int(eye * m.width), 0);
+    int column = p.x - x0.x + off.x;
+    // Beyond the rho range: no tap (the bounds test skips it), as off the screen's edge.
+    if (column < 0 || column >= int(m.width)) return ivec2(-1);
+    return vpNeighbour(m, p - x0, off) + x0;
+}
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -54,7 +71,7 @@ void main() {
         float sumW = 0.0;
         for (int dy = -pc.radius; dy <= pc.radius; ++dy)
             for (int dx = -pc.radius; dx <= pc.radius; ++dx) {
-                ivec2 q = p + ivec2(dx, dy);
+                ivec2 q = svgfTap(p, ivec2(dx, dy));
                 if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, pc.size))) continue;
                 vec4 aq = imageLoad(accumulated, q);
                 float zq = svgfDepthAt(depth, q);

@@ -12,6 +12,8 @@
 // position in the other eye counts as off-screen (no history).
 #extension GL_GOOGLE_include_directive : require
 #include "common/color.glsl"
+#define VISUAL_POLAR_PARAMS
+#include "common/visual_polar.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -30,6 +32,7 @@ layout(push_constant) uniform Params {
     int catmullRom;   // 1: Catmull-Rom history, 0: bilinear
     int useHistory;   // 0 on the first frame after a reset / camera cut (history invalid)
     int useMotion;    // 0: no motion input (still camera)
+    int useVp;        // 1: a Visual-Polar image (the `vp` block): VP neighbours and history taps
 } pc;
 
 // YCoCg (Malvar & Sullivan): the clip box is tighter around a colour cluster than in RGB
@@ -82,6 +85,17 @@ vec3 historyCatmullRom(vec2 h, ivec2 lo, ivec2 hi) {
     return sum;
 }
 
+// Visual-Polar history (seed 003 P5 §3.3): bilinear at the continuous position `h` (eye-local
+// x in columns, t = phi / 2 pi), each column at its own phi height, wrapped on phi.
+vec3 historyVisualPolar(VisualPolarMap m, vec2 h, int x0, ivec2 lo, ivec2 hi) {
+    ivec2 taps[4];
+    float weights[4];
+    vpBilinearTaps(m, h, taps, weights);
+    vec3 sum = vec3(0.0);
+    for (int k = 0; k < 4; ++k) sum += weights[k] * historyTap(taps[k] + ivec2(x0, 0), lo, hi);
+    return sum;
+}
+
 // Moves `h` along the line towards `centre` until it lies in the box centre +- extent (Karis 2014
 // clip; unlike a per-channel clamp it keeps the hue of the history). extent >= 0. Divisions only
 // happen where |v| > extent >= 0, so |v| > 0; a zero-size box yields the centre.
@@ -106,11 +120,18 @@ void main() {
 
     vec4 c = current(p, lo, hi);
 
-    // 3x3 neighbourhood statistics in YCoCg (taps clamped to the eye: no seam crossing).
+    VisualPolarMap m;
+    if (pc.useVp != 0) m = vpMapOfEye(uint(eye));
+
+    // 3x3 neighbourhood statistics in YCoCg (taps clamped to the eye: no seam crossing). On a
+    // Visual-Polar image the neighbours wrap on phi and follow each column's phi height (P5
+    // §3.3: a row index is a different phi in columns of different heights).
     vec3 mn = vec3(3.0e38), mx = vec3(-3.0e38), m1 = vec3(0.0), m2 = vec3(0.0);
     for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
-            vec3 s = toYCoCg(current(p + ivec2(dx, dy), lo, hi).rgb);
+            ivec2 q = p + ivec2(dx, dy);
+            if (pc.useVp != 0) q = vpNeighbour(m, p - ivec2(x0, 0), ivec2(dx, dy)) + ivec2(x0, 0);
+            vec3 s = toYCoCg(current(q, lo, hi).rgb);
             mn = min(mn, s);
             mx = max(mx, s);
             m1 += s;
@@ -123,9 +144,20 @@ void main() {
     bool onScreen = !any(isnan(mv)) && !any(isinf(mv)) && h.x >= float(x0) &&
                     h.x < float(x1 + 1) && h.y >= 0.0 && h.y < float(pc.size.y);
 
+    if (pc.useVp != 0) {
+        // Motion in columns and rows of this texel's column (GBuffer): h becomes (x, t), eye-
+        // local; phi always exists, rho must stay inside the grid.
+        h = vpMovedPosition(m, p - ivec2(x0, 0), mv);
+        onScreen = !any(isnan(h)) && !any(isinf(h)) && h.x >= 0.0 && h.x < float(m.width);
+    }
+
     vec3 outColor = c.rgb;  // no history: the current frame alone (alpha = 1)
     if (pc.useHistory != 0 && onScreen) {
-        vec3 hc = pc.catmullRom != 0 ? historyCatmullRom(h, lo, hi) : historyBilinear(h, lo, hi);
+        // Visual-Polar: bilinear only (a Catmull-Rom across columns of different phi heights
+        // would need 4 per-column row sets; not done).
+        vec3 hc = pc.useVp != 0      ? historyVisualPolar(m, h, x0, lo, hi)
+                  : pc.catmullRom != 0 ? historyCatmullRom(h, lo, hi)
+                                       : historyBilinear(h, lo, hi);
         vec3 hy = toYCoCg(hc);
         if (pc.clipMode == 1) {
             hy = clipToBox(hy, 0.5 * (mn + mx), 0.5 * (mx - mn));

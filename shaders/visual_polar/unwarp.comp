@@ -4,6 +4,10 @@
 // to the edge), in each column bilinear in phi at that column's own height, wrapped (hides the
 // phi seam); trilinear across the phi-only mips where one pixel covers several phi rows (the
 // fovea). The gaze pixel maps to rho ~ 0, t = 0: finite, never a division by zero.
+// P5 §3.4 precomputes the sampling positions: the per-pixel (rho, t), mip level and blur sigma
+// live in the persistent `lookup` image and are recomputed only when the mapping key (the `vp`
+// block, the field of view, the level count and the blur profile) differs from the one stored
+// in `lookup_key` by the last rebuild (mode 1 stores it after the frame's mapping dispatch).
 #extension GL_GOOGLE_include_directive : require
 
 #include "../common/camera.glsl"
@@ -18,14 +22,28 @@ layout(rgba32f) uniform readonly image2D mip2;
 layout(rgba32f) uniform readonly image2D mip3;
 layout(rgba32f) uniform writeonly image2D unwarped;
 layout(rgba32f) uniform writeonly image2D result;
-layout(r32f) uniform writeonly image2D sigma;  // the blur's sigma per pixel (P5 §3.5)
+// Per pixel: x rho, y t, z mip level L, w the blur's sigma (P5 §3.5); persistent.
+layout(rgba32f) uniform image2D lookup;
+layout(std430) buffer LookupKey { uvec4 key[5]; } lookup_key;
 
 layout(push_constant) uniform Params {
     uint levels;        // 1..4
     uint toResult;      // 1: write `result` (no blur follows), 0: `unwarped` and `sigma`
     float sigmaMax;     // blur sigma (pixels) at blurDegrees for this height
     float blurDegrees;  // >= 1
+    uint useCache;      // 0: recompute the lookup every frame (benchmarks, tests)
+    uint mode;          // 0: map, 1: store the key of this frame (one thread)
 } pc;
+
+// Everything the lookup depends on besides the output size (a resize recompiles the pass).
+uvec4 mappingKey(int k) {
+    if (k == 0) return vp.grid;
+    if (k == 1) return floatBitsToUint(vp.fovea);
+    if (k == 2) return floatBitsToUint(vp.eyes[0]);
+    if (k == 3) return floatBitsToUint(vp.eyes[1]);
+    return floatBitsToUint(vec4(camera_info.jitter.zw, pc.sigmaMax, pc.blurDegrees)) ^
+           uvec4(0u, 0u, 0u, pc.levels << 16);
+}
 
 // View-space direction through a point of an eye image (camera.glsl's cameraRay convention).
 vec3 viewDirection(vec2 local) {
@@ -85,32 +103,45 @@ vec4 bilinear(VisualPolarMap m, uint eye, vec2 rt, uint level) {
 }
 
 void main() {
+    if (pc.mode == 1u) {
+        if (gl_GlobalInvocationID.xy == uvec2(0u))
+            for (int k = 0; k < 5; ++k) lookup_key.key[k] = mappingKey(k);
+        return;
+    }
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = ivec2(cameraImageSize());
     if (p.x >= size.x || p.y >= size.y) return;
     uint eyes = clamp(vp.grid.z, 1u, 2u);
     uint eye = min(cameraEyeOf(uint(p.x)), eyes - 1u);
     VisualPolarMap m = vpMapOfEye(eye);
-    vec2 local = vec2(p) + 0.5 - vec2(float(eye * cameraEyeSize().x), 0.0);
-    vec2 rt = vpToVisualPolar(m, local);
-    // Rows per screen pixel along phi: n / (2 pi r) with the continuous height n = H rho / rho_f
-    // in the fovea (constant there: H / (2 pi r_f), no singularity at the gaze), H beyond; the
-    // level brings it to <= 1 (P5 §3.4).
-    float n = float(m.height) * min(rt.x / m.foveaFraction, 1.0);
-    float rFovea = m.dMax * m.foveaDegrees / kVpMaxDegrees;
-    float rowsPerPixel = rt.x < m.foveaFraction ? float(m.height) / max(2.0 * kVpPi * rFovea, 1e-6)
-                                                : n / max(2.0 * kVpPi * length(local - m.gaze), 1e-6);
-    float L = clamp(log2(max(rowsPerPixel, 1.0)), 0.0, float(max(pc.levels, 1u) - 1u));
+    bool stale = pc.useCache == 0u;
+    for (int k = 0; k < 5; ++k) stale = stale || any(notEqual(lookup_key.key[k], mappingKey(k)));
+    vec4 lk;
+    if (stale) {
+        vec2 local = vec2(p) + 0.5 - vec2(float(eye * cameraEyeSize().x), 0.0);
+        vec2 rt = vpToVisualPolar(m, local);
+        // Rows per screen pixel along phi: n / (2 pi r) with the continuous height n = H rho /
+        // rho_f in the fovea (constant there: H / (2 pi r_f), no singularity at the gaze), H
+        // beyond; the level brings it to <= 1 (P5 §3.4).
+        float n = float(m.height) * min(rt.x / m.foveaFraction, 1.0);
+        float rFovea = m.dMax * m.foveaDegrees / kVpMaxDegrees;
+        float rowsPerPixel = rt.x < m.foveaFraction
+                                 ? float(m.height) / max(2.0 * kVpPi * rFovea, 1e-6)
+                                 : n / max(2.0 * kVpPi * length(local - m.gaze), 1e-6);
+        float L = clamp(log2(max(rowsPerPixel, 1.0)), 0.0, float(max(pc.levels, 1u) - 1u));
+        lk = vec4(rt, L, sigmaAt(m, local));
+        imageStore(lookup, p, lk);
+    } else {
+        lk = imageLoad(lookup, p);
+    }
+    vec2 rt = lk.xy;
+    float L = lk.z;
     uint l0 = uint(floor(L));
     uint l1 = min(l0 + 1u, max(pc.levels, 1u) - 1u);
     vec4 c = bilinear(m, eye, rt, l0);
     if (l1 != l0) c = mix(c, bilinear(m, eye, rt, l1), L - float(l0));
     // NaN/Inf in the VP image never reach the screen.
     if (any(isnan(c)) || any(isinf(c))) c = vec4(0.0);
-    if (pc.toResult != 0u) {
-        imageStore(result, p, c);
-    } else {
-        imageStore(unwarped, p, c);
-        imageStore(sigma, p, vec4(sigmaAt(m, local)));
-    }
+    if (pc.toResult != 0u) imageStore(result, p, c);
+    else imageStore(unwarped, p, c);
 }

@@ -407,7 +407,7 @@ TEST_F(VisualPolarPassTest, BmfrHistoryFollowsVisualPolarMotion) {
         { "from": "gb.visibility", "to": "pt.visibility" }, { "from": "gb.albedo", "to": "pt.albedo" },
         { "from": "pt.demodulated", "to": "bmfr.color" }, { "from": "gb.position", "to": "bmfr.position" },
         { "from": "gb.normal", "to": "bmfr.normal" }, { "from": "gb.albedo", "to": "bmfr.albedo" },
-        { "from": "gb.motion", "to": "bmfr.motion" } ],
+        { "from": "gb.motion", "to": "bmfr.motion" }, { "from": "warp.vp", "to": "bmfr.vp" } ],
       "outputs": [ "bmfr.accumulated", "gb.position", "gb.motion" ] })";
     CompileOptions o;
     o.width = o.height = n;
@@ -458,4 +458,37 @@ TEST_F(VisualPolarPassTest, BmfrHistoryFollowsVisualPolarMotion) {
     auto [hits3, kept3, max3] = frame(5, true);
     EXPECT_EQ(kept3, 0u) << "a camera cut resets the history";
     (void)maxCount, (void)max2, (void)max3, (void)hits3;
+}
+
+// P5 §3.4's precomputed sampling positions: Unwarp with its lookup cache gives exactly the image
+// of the uncached pass (every frame recomputed) on frames with the same gaze and after a gaze
+// change (a stale lookup would keep the old gaze's mapping there).
+TEST_F(VisualPolarPassTest, UnwarpLookupCacheFollowsGazeChanges) {
+    const uint32_t w = 96, h = 80;
+    VpRig cached(ctx(), w, h, R"({ "blur": true, "blurSigma": 30 })");
+    VpRig fresh(ctx(), w, h, R"({ "blur": true, "blurSigma": 30, "cache": false })");
+    glm::uvec2 vs = cached.vpSize();
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(0, 1);
+    // Consecutive frames of one camera (no cut: a cut resets the pass and rebuilds anyway).
+    static const scene::Scene s = scene::loadBuiltinScene("builtin:plane");
+    const scene::CameraDesc desc = s.cameras.empty() ? s.defaultCamera() : s.cameras.front();
+    scene::FrameCamera previous;
+    uint64_t frame = 0;
+    for (glm::vec2 gaze : {glm::vec2(0.5f), glm::vec2(0.5f), glm::vec2(0.2f, 0.7f),
+                           glm::vec2(0.2f, 0.7f), glm::vec2(0.5f)}) {
+        const glm::vec2 gazes[scene::kMaxEyes] = {gaze, gaze};
+        auto cam =
+            scene::makeFrameCamera(desc, w, h, {}, frame, frame == 0 ? nullptr : &previous, gazes);
+        previous = cam;
+        ++frame;
+        auto m = mappingOf(vs, 1, {w, h}, gaze);
+        Image noise = sampledVp(m, vs, [&](glm::dvec2, uint32_t, uint32_t) {
+            return glm::dvec4(u(rng), u(rng), u(rng), 1.0);
+        });
+        Image a = cached.unwarp(cam, noise), b = fresh.unwarp(cam, noise);
+        size_t differ = 0;
+        for (size_t i = 0; i < a.size(); ++i) differ += a[i] != b[i];
+        EXPECT_EQ(differ, 0u) << "gaze " << gaze.x << "," << gaze.y;
+    }
 }
