@@ -28,7 +28,8 @@ private:
     float mBasePixelStride = 14.0f;
     float mDepthSensitivity = 0.05f;
     float mReferenceHeight = 1080.0f;
-    float mNormalAngle = 30.0f;
+    float mNormalAngle = 10.0f;
+    bool mClampToNeighbours = true;
     int mEyes = 0;
     std::unique_ptr<gpu::ComputePipeline> mMipFirst, mMipDown, mFix;
 };
