@@ -70,6 +70,8 @@ FrameCamera makeFrameCamera(const CameraDesc& camera, uint32_t width, uint32_t h
         eye.prevViewProj = previous && previous->eyeCount == out.eyeCount
                                ? previous->eyes[e].viewProj
                                : eye.viewProj;
+        eye.prevGaze =
+            previous && previous->eyeCount == out.eyeCount ? previous->eyes[e].gaze : eye.gaze;
     }
     return out;
 }

@@ -18,6 +18,7 @@ struct EyeView {
     glm::mat4 prevViewProj{1.0f};  // the previous frame's (jitter-free) matrix, for motion vectors
     glm::vec3 position{0.0f};      // eye position in world space
     glm::vec2 gaze{0.5f};          // gaze point in [0,1]^2 of this eye's image (0,0 = top-left)
+    glm::vec2 prevGaze{0.5f};      // the previous frame's gaze (VP reprojection, P5 §3.3)
     uint32_t offsetX = 0;          // first column of this eye in the side-by-side image
 };
 

@@ -14,7 +14,7 @@ CameraInfo packCamera(const FrameCamera& camera, uint64_t frameIndex, uint64_t f
         out.eyes[e].prevViewProj = eye.prevViewProj;
         out.eyes[e].cameraToWorld = glm::inverse(eye.view);  // a rigid transform: always invertible
         out.eyes[e].position = glm::vec4(eye.position, float(eye.offsetX));
-        out.eyes[e].gaze = glm::vec4(eye.gaze, 0.0f, 0.0f);
+        out.eyes[e].gaze = glm::vec4(eye.gaze, eye.prevGaze);
     }
     out.size = {camera.eyeWidth, camera.height, camera.eyeCount, camera.cut ? 1u : 0u};
     const float aspect = camera.height > 0 ? float(camera.eyeWidth) / float(camera.height) : 1.0f;

@@ -15,7 +15,7 @@ struct CameraEye {
     glm::mat4 prevViewProj;   // previous frame's viewProj (motion vectors)
     glm::mat4 cameraToWorld;  // inverse view: columns are right, up, back, position
     glm::vec4 position;       // xyz eye position; w = first column of this eye (offsetX)
-    glm::vec4 gaze;           // xy gaze in [0,1]^2 of the eye's image; zw unused
+    glm::vec4 gaze;           // xy gaze in [0,1]^2 of the eye's image; zw the previous frame's
 };
 
 struct CameraInfo {

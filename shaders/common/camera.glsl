@@ -13,7 +13,7 @@ struct CameraEye {
     mat4 prevViewProj;
     mat4 cameraToWorld;
     vec4 position;  // xyz; w = first column of the eye (float)
-    vec4 gaze;      // xy in [0,1]^2 of the eye's image
+    vec4 gaze;      // xy in [0,1]^2 of the eye's image; zw the previous frame's (same units)
 };
 
 // Explicit binding 26, next to the scene's 16-25 (see scene_data.glsl for why not automatic).

@@ -73,6 +73,16 @@ float vpRhoOfEccentricity(VisualPolarMap m, float e) {
 
 float vpRadius(VisualPolarMap m, float rho) { return m.dMax * vpEccentricity(m, rho) / kVpMaxDegrees; }
 
+// The same grid around another gaze (pixels of the eye image, clamped onto it; P5 §3.2: rho = 1
+// reaches the farthest corner, so dMax follows the gaze). GBuffer maps the previous screen
+// position with the previous frame's gaze (P5 §3.3) so a gaze move reprojects like a camera move.
+VisualPolarMap vpWithGaze(VisualPolarMap m, vec2 gaze) {
+    m.gaze = clamp(gaze, vec2(0.0), m.screen);
+    vec2 d = max(m.gaze, m.screen - m.gaze);
+    m.dMax = max(length(d), 0.5);
+    return m;
+}
+
 // VP (rho, t = phi / 2 pi) -> screen pixels of the eye image.
 vec2 vpToScreen(VisualPolarMap m, float rho, float t) {
     float r = vpRadius(m, rho), phi = 2.0 * kVpPi * t;

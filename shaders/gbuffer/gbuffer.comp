@@ -105,17 +105,23 @@ void main() {
 
     // A camera that did not move gives exactly zero (not a rounding residue of the two camera
     // representations), so temporal passes can rely on "no motion" for a still view.
-    vec2 previous;
-    vec2 mv = vec2(0.0);
-    if (camera_info.eyes[eye].prevViewProj != camera_info.eyes[eye].viewProj &&
-        cameraPreviousPixel(eye, s.position, previous))
-        mv = previous - now;
-    if (pc.useCoords != 0u && pc.useVp != 0u && mv != vec2(0.0)) {
-        // P5 §3.3: world position -> previous screen position -> Visual-Polar texel (with the
-        // current gaze: the camera block holds no previous gaze). x in columns; y in rows of the
-        // texel's column, wrapped to the shorter way round phi so the seam never shows as a jump.
+    CameraEye ce = camera_info.eyes[eye];
+    vec2 previous = now;
+    bool hasPrevious = true;
+    if (ce.prevViewProj != ce.viewProj)
+        hasPrevious = cameraPreviousPixel(eye, s.position, previous);
+    vec2 mv = hasPrevious ? previous - now : vec2(0.0);
+    // P5 §3.3: a gaze move re-centres the Visual-Polar grid, so even a still camera sees its
+    // texels move (camera.glsl: gaze.zw is the previous frame's gaze).
+    bool gazeMoved = any(notEqual(ce.gaze.zw, ce.gaze.xy));
+    if (pc.useCoords != 0u && pc.useVp != 0u && hasPrevious && (mv != vec2(0.0) || gazeMoved)) {
+        // P5 §3.3: world position -> previous screen position -> previous Visual-Polar texel,
+        // mapped with the PREVIOUS frame's gaze (the grid's size and fovea do not depend on it).
+        // x in columns; y in rows of the texel's column, wrapped to the shorter way round phi so
+        // the seam never shows as a jump.
         VisualPolarMap m = vpMapOfEye(eye);
-        vec2 rt = vpToVisualPolar(m, previous - vec2(float(eye * cameraEyeSize().x), 0.0));
+        VisualPolarMap prev = vpWithGaze(m, clamp(ce.gaze.zw, 0.0, 1.0) * m.screen);
+        vec2 rt = vpToVisualPolar(prev, previous - vec2(float(eye * cameraEyeSize().x), 0.0));
         uint column = uint(p.x) - min(eye * m.width, uint(p.x));
         float n = float(vpRows(m, min(column, m.width - 1u)));  // >= 1
         float dRow = rt.y * n - 0.5 - float(p.y);

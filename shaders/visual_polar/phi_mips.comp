@@ -25,11 +25,28 @@ vec4 loadLevel(uint level, ivec2 p) {
     return imageLoad(mip2, p);
 }
 
+// The highest level unwarp.comp can read: its level L is largest in the fovea, log2 of H rows
+// over the fovea's circumference 2 pi r_f (beyond it n / 2 pi r <= H / 2 pi r_f); it reads
+// floor(L) and floor(L) + 1. The smallest r_f of the eyes bounds both.
+uint highestLevelRead(uint eyes) {
+    float rFovea = 1e30;
+    for (uint e = 0u; e < eyes; ++e) {
+        VisualPolarMap me = vpMapOfEye(e);
+        rFovea = min(rFovea, me.dMax * me.foveaDegrees / kVpMaxDegrees);
+    }
+    // dMax >= 0.5 and foveaDegrees >= 1e-3: rFovea > 0; the max() keeps log2 finite anyway.
+    float L = log2(max(float(vp.grid.y) / max(2.0 * kVpPi * rFovea, 1e-6), 1.0));
+    return uint(floor(L + 1e-3)) + 1u;  // a margin for rounding against unwarp.comp's L
+}
+
 void main() {
     ivec2 size = textureSize(color, 0);
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (p.x >= size.x) return;
     uint eyes = clamp(vp.grid.z, 1u, 2u);
+    // P5 §3.4: levels the mapping never reads are not built (at reduction 0.61, 256x256 and a
+    // centre gaze only level 1 is read).
+    if (pc.level > highestLevelRead(eyes)) return;
     VisualPolarMap m = vpMapOfEye(0u);
     uint eye = min(uint(p.x) / m.width, eyes - 1u);
     uint column = uint(p.x) - eye * m.width;

@@ -139,7 +139,10 @@ void main() {
     uint l0 = uint(floor(L));
     uint l1 = min(l0 + 1u, max(pc.levels, 1u) - 1u);
     vec4 c = bilinear(m, eye, rt, l0);
-    if (l1 != l0) c = mix(c, bilinear(m, eye, rt, l1), L - float(l0));
+    // Only where level l1 has a weight: most of the periphery maps at L = 0 exactly (at most one
+    // phi row per pixel), so it skips half the fetches.
+    float fl = L - float(l0);
+    if (l1 != l0 && fl > 0.0) c = mix(c, bilinear(m, eye, rt, l1), fl);
     // NaN/Inf in the VP image never reach the screen.
     if (any(isnan(c)) || any(isinf(c))) c = vec4(0.0);
     if (pc.toResult != 0u) imageStore(result, p, c);

@@ -22,14 +22,11 @@ layout(push_constant) uniform Params {
 VisualPolarMap makeMap(uint eye, uvec2 vpSize, uint eyes) {
     VisualPolarMap m;
     m.screen = vec2(max(cameraEyeSize(), uvec2(1u)));
-    m.gaze = clamp(camera_info.eyes[eye].gaze.xy, 0.0, 1.0) * m.screen;  // off-screen: clamped
-    vec2 d = max(m.gaze, m.screen - m.gaze);
-    m.dMax = max(length(d), 0.5);
     m.width = max(vpSize.x / max(eyes, 1u), 1u);
     m.height = max(vpSize.y, 1u);
     m.foveaFraction = pc.foveaFraction;
     m.foveaDegrees = pc.foveaDegrees;
-    return m;
+    return vpWithGaze(m, clamp(camera_info.eyes[eye].gaze.xy, 0.0, 1.0) * m.screen);  // clamped
 }
 
 void main() {
