@@ -11,9 +11,20 @@
 // How a pass uses it: dispatch threads over the image (width x height, 2D) in both modes and
 // call sampleLayoutWorkItem with a push constant `useLayout` (= ctx.connected("layout")):
 //   - full grid (useLayout == 0): thread (x, y) is pixel (x, y) with `defaultSamples`;
-//   - layout: thread (x, y) handles entry y * width + x, so at most width * height entries are
-//     read (a layout lists each pixel at most once); invalid entries return false.
+//   - layout: each workgroup takes a chunk of consecutive entries (one per lane), and chunks
+//     are numbered down the workgroup columns (chunk = wx * groupsY + wy), so the workgroups that
+//     hold entries are spread over the whole dispatch; at most width * height entries are read
+//     (a layout lists each pixel at most once); invalid entries return false.
+//   Why column order: llvmpipe hands each CPU thread one contiguous range of the row-major
+//   workgroup index, so with row-major chunks a list shorter than the image (issue 15's sparse
+//   periphery) put all its work in the first threads' ranges and left the others idle: PathTrace
+//   got 1.83x from 2 threads on a full list but 1.11x at 66 % of the pixels. A GPU schedules
+//   workgroups dynamically and does not care; lanes still get consecutive (row-ordered) entries.
 // With a layout, pixels not listed must be cleared to the pass's invalid marker first.
+//
+// Include it AFTER the shader's `layout(local_size_x = ...) in;`: sampleLayoutWorkItem reads
+// gl_WorkGroupSize, which glslang takes as 1 x 1 x 1 before that declaration (a shader that
+// includes this first reads only the first entries; GBufferTest.LayoutTracesOnlyListedPixels).
 //
 // Define SAMPLE_LAYOUT_WRITE before including to get a writable block (the SampleList pass).
 #ifndef FOVEA_SAMPLE_LAYOUT_GLSL
@@ -66,12 +77,19 @@ bool sampleLayoutWorkItem(bool useLayout, uvec2 thread, uvec2 imageSize, uint de
                           out uvec2 pixel, out uint samples) {
     pixel = thread;
     samples = 0u;
-    if (any(greaterThanEqual(thread, imageSize))) return false;
     if (!useLayout) {
+        if (any(greaterThanEqual(thread, imageSize))) return false;
         samples = defaultSamples;
         return defaultSamples > 0u;
     }
-    return sampleLayoutEntry(thread.y * imageSize.x + thread.x, imageSize, pixel, samples);
+    // Chunks of gl_WorkGroupSize.x * y entries, numbered down the workgroup columns (see above).
+    // Capacity: groups * lanes >= width * height >= any valid count, so every entry has a lane
+    // (lanes of edge workgroups outside the image take entries too).
+    const uint lanes = gl_WorkGroupSize.x * gl_WorkGroupSize.y;
+    uint chunk = gl_WorkGroupID.x * gl_NumWorkGroups.y + gl_WorkGroupID.y;
+    uint entry = chunk * lanes + gl_LocalInvocationIndex;
+    if (entry >= imageSize.x * imageSize.y) return false;  // the documented cap, as before
+    return sampleLayoutEntry(entry, imageSize, pixel, samples);
 }
 
 #endif

@@ -6,8 +6,12 @@
 // Works over the full grid or over a sample layout (seed 000 §3.2's coordinates buffer, whose
 // entries §3.3/§4.1 map to launch coordinates; ours already hold side-by-side coordinates); with
 // a layout the pass first runs this shader with `clearPass` = 1 so unlisted pixels read invalid.
-// Output encodings: /tmp/fovea/CONTRACT.md, docs/passes/GBuffer.md.
+// Output encodings: docs/passes/GBuffer.md.
 #extension GL_GOOGLE_include_directive : require
+
+// Before the includes: sample_layout.glsl reads gl_WorkGroupSize, which is 1 x 1 x 1 until the
+// local size is declared.
+layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "../common/bvh.glsl"
 #include "../common/camera.glsl"
@@ -15,8 +19,6 @@
 #include "../common/scene_sample.glsl"
 #define VISUAL_POLAR_PARAMS
 #include "../common/visual_polar.glsl"
-
-layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(rgba32ui) uniform writeonly uimage2D visibility;
 layout(rgba32f) uniform writeonly image2D position;
