@@ -72,7 +72,7 @@ void main() {
             prev = vec2(p) + 0.5 + m;
             if (pc.useVp != 0) {
                 // P5 §3.3: motion rows are rows of this texel's column; prev becomes (x, t).
-                uint eye = min(uint(p.x) / max(vp.grid.x, 1u), clamp(vp.grid.z, 1u, 2u) - 1u);
+                uint eye = vpEyeOfColumn(float(p.x));
                 VisualPolarMap vm = vpMapOfEye(eye);
                 ivec2 local = p - ivec2(int(eye * vm.width), 0);
                 prev = vpMovedPosition(vm, local, m);

@@ -11,8 +11,7 @@
 // 2 pi) and the taps follow each column's own phi height, wrapped (visual_polar.glsl).
 void bmfrHistoryTaps(bool useVp, ivec2 size, vec2 prev, out ivec2 taps[4], out float weights[4]) {
     if (useVp) {
-        uint eyes = clamp(vp.grid.z, 1u, 2u);
-        uint eye = min(uint(max(prev.x, 0.0)) / max(vp.grid.x, 1u), eyes - 1u);
+        uint eye = vpEyeOfColumn(prev.x);
         VisualPolarMap m = vpMapOfEye(eye);
         float x0 = float(eye * m.width);
         vpBilinearTaps(m, prev - vec2(x0, 0.0), taps, weights);

@@ -177,6 +177,23 @@ VisualPolarMap vpMapOfEye(uint eye) {
     m.foveaDegrees = max(vp.fovea.y, 1e-3);
     return m;
 }
+
+// The eye whose Visual-Polar image holds column x of the whole (side-by-side) image.
+uint vpEyeOfColumn(float x) {
+    return min(uint(max(x, 0.0)) / max(vp.grid.x, 1u), clamp(vp.grid.z, 1u, 2u) - 1u);
+}
+
+// vpNeighbour in whole-image texels: the neighbour at offset `step` of texel p inside p's eye,
+// wrapped on phi at the target column's own height; beyond the rho range ivec2(-1) (off the
+// image, so a bounds test skips it, as off the screen's edge).
+ivec2 vpImageNeighbour(ivec2 p, ivec2 step) {
+    uint eye = vpEyeOfColumn(float(p.x));
+    VisualPolarMap m = vpMapOfEye(eye);
+    ivec2 x0 = ivec2(int(eye * m.width), 0);
+    int column = p.x - x0.x + step.x;
+    if (column < 0 || column >= int(m.width)) return ivec2(-1);
+    return vpNeighbour(m, p - x0, step) + x0;
+}
 #endif
 
 #endif

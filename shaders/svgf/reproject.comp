@@ -101,7 +101,7 @@ void main() {
         VisualPolarMap vm;
         int x0 = 0;
         if (pc.useVp != 0) {
-            uint eye = min(uint(p.x) / max(vp.grid.x, 1u), clamp(vp.grid.z, 1u, 2u) - 1u);
+            uint eye = vpEyeOfColumn(float(p.x));
             vm = vpMapOfEye(eye);
             x0 = int(eye * vm.width);
             prev = vpMovedPosition(vm, p - ivec2(x0, 0), mv);  // eye-local (x, t)

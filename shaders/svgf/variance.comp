@@ -37,16 +37,9 @@ layout(push_constant) uniform Params {
 } pc;
 
 // The tap at offset `off` from texel p: screen addressing, or on a Visual-Polar image the
-// neighbour at that offset wrapped on phi at the target column's own height (visual_polar.glsl).
+// neighbour wrapped on phi at the target column's own height (visual_polar.glsl).
 ivec2 svgfTap(ivec2 p, ivec2 off) {
-    if (pc.useVp == 0) return p + off;
-    uint eye = min(uint(p.x) / max(vp.grid.x, 1u), clamp(vp.grid.z, 1u, 2u) - 1u);
-    VisualPolarMap m = vpMapOfEye(eye);
-    ivec2 x0 = ivec2(int(eye * m.width), 0);
-    int column = p.x - x0.x + off.x;
-    // Beyond the rho range: no tap (the bounds test skips it), as off the screen's edge.
-    if (column < 0 || column >= int(m.width)) return ivec2(-1);
-    return vpNeighbour(m, p - x0, off) + x0;
+    return pc.useVp == 0 ? p + off : vpImageNeighbour(p, off);
 }
 
 void main() {
