@@ -5,6 +5,7 @@
 // filtered = x * albedo' + emission, albedo' = albedo where > 1e-3 else 1, per channel.
 #extension GL_GOOGLE_include_directive : require
 #include "bmfr/bmfr_common.glsl"
+#include "common/color.glsl"
 #include "bmfr/bmfr_reprojection.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -66,9 +67,8 @@ void main() {
 
     vec3 alb = vec3(1.0), emi = vec3(0.0);
     if (pc.useAlbedo != 0) {
-        vec3 t = texelFetch(albedo, p, 0).rgb;
         // NaN and Inf fall back to 1 (as a miss would).
-        for (int c = 0; c < 3; ++c) alb[c] = t[c] > 1e-3 && !isinf(t[c]) ? t[c] : 1.0;
+        alb = demodulationAlbedo(texelFetch(albedo, p, 0).rgb);
     }
     if (pc.useEmission != 0) {
         emi = texelFetch(emission, p, 0).rgb;

@@ -5,6 +5,8 @@
 #ifndef FOVEA_HISTORY_FIX_MIP_GLSL
 #define FOVEA_HISTORY_FIX_MIP_GLSL
 
+#include "common/color.glsl"
+
 int eyeOfPixel(int x, int eyeWidth, int eyes) { return min(x / eyeWidth, eyes - 1); }
 
 // Optional demodulation (inputs `albedo`, `emission`; issue 13): a remodulated colour such as
@@ -13,12 +15,7 @@ int eyeOfPixel(int x, int eyeWidth, int eyes) { return min(x / eyeWidth, eyes - 
 // coarse texel never mixes an emitter or a wall colour into a coplanar neighbour (the depth test
 // cannot see those edges). albedo' = albedo > 1e-3 ? albedo : 1 per channel, NaN/Inf -> 1, as
 // Remodulate and BMFR remodulate; a non-finite emission counts as 0.
-vec3 hfSafeAlbedo(vec3 a, bool use) {
-    vec3 r = vec3(1.0);
-    if (use)
-        for (int c = 0; c < 3; ++c) r[c] = a[c] > 1e-3 && !isinf(a[c]) ? a[c] : 1.0;
-    return r;
-}
+vec3 hfSafeAlbedo(vec3 a, bool use) { return use ? demodulationAlbedo(a) : vec3(1.0); }
 // Optional normal test (input `normal`, issue 13): a coarse texel holds the mean shading normal of
 // its surface pixels, NOT renormalized; a pixel accepts it with weight
 // saturate((n . n_L - cosT) / (1 - cosT)). n . n_L = |n_L| cos(angle), so a texel is refused when
