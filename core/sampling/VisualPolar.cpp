@@ -64,6 +64,9 @@ VisualPolarGrid VisualPolarGrid::make(uint32_t width, uint32_t height, double fo
 }
 
 uint32_t VisualPolarGrid::rows(uint32_t column) const {
+    if (stairBlock > 0)  // the last column of the block column (visual_polar.glsl vpRows)
+        column =
+            std::min(column + (stairBlock - 1) - (column + stairPhase) % stairBlock, width - 1);
     double rho = (column + 0.5) / width;
     if (rho >= foveaFraction) return height;
     // ceil(H rho / rho_f), at least 1 (column 0 of 853x960: 3 rows).

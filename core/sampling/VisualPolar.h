@@ -30,6 +30,9 @@ inline constexpr double kVisualPolarFoveaFraction = 0.24;
 // acuity, where Eq. 2's two branches differ by 0.26 % (a small step down at 5.79 degrees): the
 // mapping then only uses the monotone tail of Eq. 2.
 inline constexpr double kVisualPolarMinFoveaFraction = 0.1;
+// Bytes of the `vp` parameter block (visual_polar.glsl VisualPolarParams, std430): grid, fovea,
+// two eyes, staircase.
+inline constexpr uint64_t kVisualPolarParamsBytes = 80;
 
 // Unnormalized CDF h(e) of P5 Eq. 2 (pi e^2 below 5.79 degrees, where the acuity is flat).
 double acuityCdfRaw(double e);
@@ -49,9 +52,14 @@ struct VisualPolarGrid {
     uint32_t width = 1, height = 1;                    // VP texels per eye (>= 1 each)
     double foveaFraction = kVisualPolarFoveaFraction;  // rho_f in (0, 1]
     double foveaDegrees = 0;                           // e_f = f^-1(rho_f)
+    // P5 §3.3's staircase clip: 0 = the triangular clip; B > 0 = every column takes the height of
+    // the last column of its B-column block column, the block grid shifted so that column i lies
+    // in block column floor((i + stairPhase) / B) (phase = (block offset x + eye W) mod B).
+    uint32_t stairBlock = 0;
+    uint32_t stairPhase = 0;
 
     static VisualPolarGrid make(uint32_t width, uint32_t height, double foveaFraction);
-    // n(i): rows of column i, in [1, height].
+    // n(i): rows of column i, in [1, height] (the staircase's when stairBlock > 0).
     uint32_t rows(uint32_t column) const;
     // Valid (unclipped) texels of the whole grid.
     uint64_t validTexels() const;

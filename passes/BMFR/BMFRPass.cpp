@@ -1,5 +1,7 @@
 #include "passes/BMFR/BMFRPass.h"
 
+#include "core/sampling/BlockGrid.h"
+#include "core/sampling/VisualPolar.h"
 #include "core/vk/Barriers.h"
 #include "core/vk/ComputePipeline.h"
 #include "core/vk/Timestamps.h"
@@ -7,12 +9,6 @@
 namespace fovea::passes {
 
 namespace {
-
-// P2 §6.1: "a static sequence of 16 random offsets, uniformly distributed over the whole set of
-// possible offsets" (drawn once with Python's random.Random(2019), both axes in [0, 32)).
-constexpr int kOffsets[BMFRPass::kOffsetCount][2] = {
-    {9, 15},  {31, 10}, {15, 15}, {20, 18}, {26, 15}, {26, 29}, {4, 20}, {2, 23},
-    {23, 21}, {17, 13}, {30, 6},  {6, 10},  {18, 28}, {26, 3},  {11, 7}, {2, 3}};
 
 constexpr uint32_t kStatsBytes = 16;  // uint counters[4]
 constexpr uint32_t kCoefStride = 96;  // floats per block (bmfr_common.glsl)
@@ -24,8 +20,7 @@ BMFRPass::BMFRPass() = default;
 BMFRPass::~BMFRPass() = default;
 
 std::array<int, 2> BMFRPass::blockOffset(uint64_t frame) {
-    const auto& o = kOffsets[frame % kOffsetCount];
-    return {o[0], o[1]};
+    return sampling::blockGridOffset(frame);  // P2 §6.1 (shared with VisualPolarWarp)
 }
 
 void BMFRPass::params(graph::ParamVisitor& v) {
@@ -94,10 +89,14 @@ void BMFRPass::reflect(graph::Reflection& r) const {
         .floatOnly()
         .optional()
         .doc("previous pixel - current pixel; open: reproject positions through the camera");
-    r.input("vp").buffer(64).optional().doc(
-        "VisualPolarWarp `vp` block (with a Visual-Polar `color` and GBuffer VP `motion`): "
-        "history taps at each column's own phi height, wrapped on phi (P5 §3.3); open: "
-        "screen addressing");
+    r.input("vp")
+        .buffer(sampling::kVisualPolarParamsBytes)
+        .optional()
+        .doc(
+            "VisualPolarWarp `vp` block (with a Visual-Polar `color` and GBuffer VP `motion`): "
+            "history taps at each column's own phi height, wrapped on phi (P5 §3.3); with the "
+            "warp's staircase the block columns follow its x offset (P5 §3.3); open: screen "
+            "addressing");
 
     const auto rgba32 = vk::Format::eR32G32B32A32Sfloat;
     r.output("filtered", rgba32)
@@ -230,7 +229,8 @@ void BMFRPass::execute(graph::ExecuteContext& ctx) {
         .set("blocksX", mBlocksX)
         .set("seed", frameSeed)
         .set("epsilon", mEpsilon)
-        .set("dropTolerance", mDropTolerance);
+        .set("dropTolerance", mDropTolerance)
+        .set("useVp", int(mUseVp));
     mFit->dispatch(cmd, uint32_t(mBlocksX * mBlocksY) * 256u, 1);
     gpu::computeToComputeBarrier(cmd);
     stamp(2);
@@ -239,7 +239,8 @@ void BMFRPass::execute(graph::ExecuteContext& ctx) {
     ctx.bindFields(*mWeightedSum);
     mWeightedSum->set("size", size)
         .set("offset", glm::ivec2(offset[0], offset[1]))
-        .set("blocksX", mBlocksX);
+        .set("blocksX", mBlocksX)
+        .set("useVp", int(mUseVp));
     mWeightedSum->dispatch(cmd, out.width(), out.height());
     gpu::computeToComputeBarrier(cmd);
     stamp(3);

@@ -2,6 +2,7 @@
 
 #include <cctype>
 
+#include "core/sampling/VisualPolar.h"
 #include "core/scene/SceneGpu.h"
 #include "core/vk/Barriers.h"
 #include "core/vk/ComputePipeline.h"
@@ -28,9 +29,12 @@ void GBufferPass::reflect(graph::Reflection& r) const {
             "VisualPolarWarp coords (seed 003 P5 §3.2): trace a regular (rho, phi) grid, one "
             "primary ray per traced texel at its screen position; the outputs take its size, "
             "untraced texels get flags bit2 (clipped); open = the screen grid");
-    r.input("vp").buffer(64).optional().doc(
-        "VisualPolarWarp `vp` block (with coords): motion in Visual-Polar texels (previous "
-        "screen position mapped into the grid); open: motion in screen pixels");
+    r.input("vp")
+        .buffer(sampling::kVisualPolarParamsBytes)
+        .optional()
+        .doc(
+            "VisualPolarWarp `vp` block (with coords): motion in Visual-Polar texels (previous "
+            "screen position mapped into the grid); open: motion in screen pixels");
     r.output("visibility", vk::Format::eR32G32B32A32Uint)
         .sameAs("coords")
         .doc(

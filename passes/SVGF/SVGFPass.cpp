@@ -1,5 +1,6 @@
 #include "passes/SVGF/SVGFPass.h"
 
+#include "core/sampling/VisualPolar.h"
 #include "core/vk/Barriers.h"
 #include "core/vk/ComputePipeline.h"
 
@@ -89,11 +90,14 @@ void SVGFPass::reflect(graph::Reflection& r) const {
         .floatOnly()
         .optional()
         .doc("previous pixel - current pixel; open: reproject positions through the camera");
-    r.input("vp").buffer(64).optional().doc(
-        "VisualPolarWarp `vp` block (with a Visual-Polar `color` and GBuffer VP `motion`): "
-        "history taps, 3x3 fallback, spatial-variance and a-trous taps at each column's own "
-        "phi height, wrapped on phi (P5 §3.3; the depth gradient stays in texel addressing); "
-        "open: screen addressing");
+    r.input("vp")
+        .buffer(sampling::kVisualPolarParamsBytes)
+        .optional()
+        .doc(
+            "VisualPolarWarp `vp` block (with a Visual-Polar `color` and GBuffer VP `motion`): "
+            "history taps, 3x3 fallback, spatial-variance and a-trous taps at each column's own "
+            "phi height, wrapped on phi (P5 §3.3; the depth gradient stays in texel addressing); "
+            "open: screen addressing");
 
     const auto rgba32 = vk::Format::eR32G32B32A32Sfloat;
     r.output("filtered", rgba32).sameAs("color").doc("final colour: last level remodulated, a = 1");

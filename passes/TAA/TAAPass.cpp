@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/sampling/VisualPolar.h"
 #include "core/scene/Camera.h"
 #include "core/vk/ComputePipeline.h"
 
@@ -32,10 +33,13 @@ void TAAPass::reflect(graph::Reflection& r) const {
         "passed through");
     r.input("motion").optional().floatOnly().sameAs("color").doc(
         "GBuffer motion: previous pixel - current pixel, jitter-free; open = still camera");
-    r.input("vp").buffer(64).optional().doc(
-        "VisualPolarWarp `vp` block (with a Visual-Polar `color` and GBuffer VP `motion`): 3x3 "
-        "neighbours and bilinear history taps wrap on phi at each column's own phi height "
-        "(P5 §3.3; historyFilter is then bilinear); open: screen addressing");
+    r.input("vp")
+        .buffer(sampling::kVisualPolarParamsBytes)
+        .optional()
+        .doc(
+            "VisualPolarWarp `vp` block (with a Visual-Polar `color` and GBuffer VP `motion`): 3x3 "
+            "neighbours and bilinear history taps wrap on phi at each column's own phi height "
+            "(P5 §3.3; historyFilter is then bilinear); open: screen addressing");
     r.output("result", vk::Format::eR32G32B32A32Sfloat)
         .sameAs("color")
         .history(1)

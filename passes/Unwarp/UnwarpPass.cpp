@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/sampling/VisualPolar.h"
 #include "core/vk/Barriers.h"
 #include "core/vk/ComputePipeline.h"
 #include "core/vk/Resources.h"
@@ -34,7 +35,9 @@ void UnwarpPass::params(graph::ParamVisitor& v) {
 
 void UnwarpPass::reflect(graph::Reflection& r) const {
     r.input("color").floatOnly().doc("the Visual-Polar image (eye halves side by side)");
-    r.input("vp").buffer(64).doc("VisualPolarWarp's `vp` block (the mapping)");
+    r.input("vp")
+        .buffer(sampling::kVisualPolarParamsBytes)
+        .doc("VisualPolarWarp's `vp` block (the mapping)");
     r.output("result", vk::Format::eR32G32B32A32Sfloat)
         .screen()
         .doc("the screen image (finite everywhere; a = the VP alpha, interpolated)");

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/sampling/BlockGrid.h"
 #include "core/sampling/VisualPolar.h"
 #include "core/vk/ComputePipeline.h"
 #include "core/vk/Resources.h"
@@ -20,6 +21,13 @@ void VisualPolarWarpPass::params(graph::ParamVisitor& v) {
     v.add("traceOffscreen", mTraceOffscreen, false,
           "also trace texels whose ray leaves the screen (P5 traced them; §7 lists skipping as "
           "an optimization)");
+    v.add("staircase", mStaircase, false,
+          "P5 §3.3's staircase clip for BMFR: every 32-column block column (P2 §6.1's moving "
+          "block grid, this frame's offset) takes the phi height of its last column, so a BMFR "
+          "block never mixes heights; BMFR with the `vp` input follows the warp's x offset. "
+          "More texels are traced than with the triangular clip (the fovea is never thinner); "
+          "the grid moves every frame, so the warp re-runs every frame. false = the triangular "
+          "clip (P5 §3.2), cached while the gaze and size do not change");
 }
 
 void VisualPolarWarpPass::reflect(graph::Reflection& r) const {
@@ -30,8 +38,10 @@ void VisualPolarWarpPass::reflect(graph::Reflection& r) const {
             "per VP texel (eye halves side by side): xy screen position of its primary ray "
             "(pixels of the side-by-side image), z 1 = traced (0 = clipped or off-screen), w eye");
     r.output("vp", vk::Format::eUndefined)
-        .buffer(64)
-        .doc("the mapping's parameters (visual_polar.glsl VisualPolarParams): grid, fovea, gaze");
+        .buffer(sampling::kVisualPolarParamsBytes)
+        .doc(
+            "the mapping's parameters (visual_polar.glsl VisualPolarParams): grid, fovea, gaze, "
+            "staircase offsets (this and the previous frame)");
 }
 
 void VisualPolarWarpPass::validate(const graph::ValidateContext& ctx) const {
@@ -51,6 +61,14 @@ void VisualPolarWarpPass::execute(graph::ExecuteContext& ctx) {
     mPipeline->set("foveaFraction", float(grid.foveaFraction))
         .set("foveaDegrees", float(grid.foveaDegrees))
         .set("traceOffscreen", uint32_t(mTraceOffscreen));
+    // The x offsets of this and the previous frame's block grid (history images were traced
+    // with the previous one; visual_polar.glsl vpPrevious).
+    const uint64_t frame = ctx.frame().index;
+    const auto now = sampling::blockGridOffset(frame);
+    const auto before = sampling::blockGridOffset(frame > 0 ? frame - 1 : frame);
+    mPipeline->set("stairBlock", uint32_t(mStaircase ? sampling::kBlockGridSize : 0))
+        .set("stairOffset", uint32_t(now[0]))
+        .set("stairPrevOffset", uint32_t(before[0]));
     mPipeline->dispatch(ctx.cmd(), coords.width(), coords.height());
 }
 

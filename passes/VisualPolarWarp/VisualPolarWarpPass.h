@@ -1,8 +1,9 @@
 // VisualPolarWarp: the Visual-Polar space of seed 003 P5 §3.2 for the frame's camera and gaze:
 // per (rho, phi) texel the screen position of its primary ray and whether it is traced (the
-// triangular fovea clip, off-screen samples), plus the `vp` parameter block every Visual-Polar
-// consumer reads (shaders/common/visual_polar.glsl). GBuffer traces the `coords` grid (coherent
-// primary rays, no compaction); Unwarp maps back to the screen. docs/passes/VisualPolarWarp.md.
+// triangular fovea clip or P5 §3.3's staircase, off-screen samples), plus the `vp` parameter block
+// every Visual-Polar consumer reads (shaders/common/visual_polar.glsl). GBuffer traces the `coords`
+// grid (coherent primary rays, no compaction); Unwarp maps back to the screen.
+// docs/passes/VisualPolarWarp.md.
 #pragma once
 #include "core/graph/Pass.h"
 
@@ -17,13 +18,15 @@ public:
     void validate(const graph::ValidateContext& ctx) const override;
     void compile(graph::CompileContext& ctx) override;
     void execute(graph::ExecuteContext& ctx) override;
-    // Recomputed only when the camera (gaze), the size or a parameter changes.
-    bool cacheable() const override { return true; }
+    // Recomputed only when the camera (gaze), the size or a parameter changes; the staircase
+    // moves every frame.
+    bool cacheable() const override { return !mStaircase; }
 
 private:
     float mReduction = 0.61f;
     float mFoveaFraction = 0.24f;
     bool mTraceOffscreen = false;
+    bool mStaircase = false;
     std::unique_ptr<gpu::ComputePipeline> mPipeline;
 };
 

@@ -45,6 +45,18 @@
 #define BMFR_HIST_MAX 3.0e38
 #endif
 
+#ifdef BMFR_BLOCK_GRID_VP
+#define VISUAL_POLAR_PARAMS
+#include "common/visual_polar.glsl"
+// This frame's block grid offset. On a Visual-Polar image whose warp draws P5 §3.3's staircase
+// clip, the block columns follow the warp's x offset (the same P2 §6.1 sequence unless
+// blockOffsets = false here), so every block column has one phi height by construction.
+ivec2 bmfrBlockOffset(ivec2 pushed, int useVp) {
+    if (useVp != 0 && vp.stair.x == uint(BMFR_BLOCK)) return ivec2(int(vp.stair.y), pushed.y);
+    return pushed;
+}
+#endif
+
 bool bmfrFinite3(vec3 v) { return !any(isnan(v)) && !any(isinf(v)); }
 bool bmfrFinite4(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
 

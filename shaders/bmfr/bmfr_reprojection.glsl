@@ -12,7 +12,8 @@
 void bmfrHistoryTaps(bool useVp, ivec2 size, vec2 prev, out ivec2 taps[4], out float weights[4]) {
     if (useVp) {
         uint eye = vpEyeOfColumn(prev.x);
-        VisualPolarMap m = vpMapOfEye(eye);
+        // The previous image was traced with the previous frame's phi heights (staircase).
+        VisualPolarMap m = vpPrevious(vpMapOfEye(eye));
         float x0 = float(eye * m.width);
         vpBilinearTaps(m, prev - vec2(x0, 0.0), taps, weights);
         for (int i = 0; i < 4; ++i) taps[i].x += int(x0);

@@ -12,6 +12,7 @@
 // blocks fit the span of the remaining columns (block mean at worst); z is scaled by its block
 // maximum so every matrix entry is O(1) (fp16-safe).
 #extension GL_GOOGLE_include_directive : require
+#define BMFR_BLOCK_GRID_VP
 #include "bmfr/bmfr_common.glsl"
 #include "common/random.glsl"
 
@@ -33,6 +34,7 @@ layout(push_constant) uniform Params {
     uint seed;      // run seed mixed with the frame index
     float epsilon;  // stochastic regularization amplitude (P2 §3.4: 0.01)
     float dropTolerance;
+    int useVp;  // 1: the `vp` block may move the block columns (bmfrBlockOffset)
 } pc;
 
 const float kBig = 3.0e38;
@@ -67,7 +69,7 @@ void reduce(int first, int end, int op) {
 void main() {
     uint t = gl_LocalInvocationID.x;
     int block = int(gl_WorkGroupID.x);
-    ivec2 origin = ivec2(block % pc.blocksX, block / pc.blocksX) * BMFR_BLOCK - pc.offset;
+    ivec2 origin = ivec2(block % pc.blocksX, block / pc.blocksX) * BMFR_BLOCK - bmfrBlockOffset(pc.offset, pc.useVp);
 
     float A[BMFR_ROWS_PER_THREAD][BMFR_COLS];
     bool valid[BMFR_ROWS_PER_THREAD];

@@ -4,6 +4,7 @@
 // The result is clamped to [0, block max of z]: radiance is non-negative, and a least-squares
 // fit of data in [0, zmax] has no reason to leave that range except by extrapolation.
 #extension GL_GOOGLE_include_directive : require
+#define BMFR_BLOCK_GRID_VP
 #include "bmfr/bmfr_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -21,6 +22,7 @@ layout(push_constant) uniform Params {
     ivec2 size;
     ivec2 offset;
     int blocksX;
+    int useVp;  // 1: the `vp` block may move the block columns (bmfrBlockOffset)
 } pc;
 
 void main() {
@@ -38,7 +40,7 @@ void main() {
     // Pixels the fit did not use (miss, non-finite geometry) keep their accumulated value.
     vec3 y = z.rgb;
     if (w.w > 0.0 && bmfrFinite3(w.xyz) && bmfrFinite3(n)) {
-        ivec2 q = p + pc.offset;  // offset >= 0, so q >= 0
+        ivec2 q = p + bmfrBlockOffset(pc.offset, pc.useVp);  // offset >= 0, so q >= 0
         int block = (q.y / BMFR_BLOCK) * pc.blocksX + q.x / BMFR_BLOCK;
         int base = block * BMFR_COEF_STRIDE;
         vec3 center, invHalf, zMax;

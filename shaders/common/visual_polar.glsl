@@ -7,7 +7,7 @@
 // dMax e(rho) / 80, e linear in the fovea and the inverse acuity CDF (Eq. 2) beyond.
 //
 // Define VISUAL_POLAR_PARAMS (readonly) or VISUAL_POLAR_PARAMS_WRITE before including to get the
-// `vp` block written by the VisualPolarWarp pass (field `vp`, 64 bytes, std430).
+// `vp` block written by the VisualPolarWarp pass (field `vp`, 80 bytes, std430).
 #ifndef FOVEA_VISUAL_POLAR_GLSL
 #define FOVEA_VISUAL_POLAR_GLSL
 
@@ -23,6 +23,12 @@ struct VisualPolarMap {
     uint height;         // >= 1
     float foveaFraction; // rho_f in (0, 1]
     float foveaDegrees;  // e_f = f^-1(rho_f)
+    // P5 §3.3's staircase clip: 0 = the triangular clip; B > 0 = every column takes the height of
+    // the last column of its B-column block (BMFR's block columns, shifted by the frame's block
+    // offset), so a block column has one phi height. Phases are (offset x + eye W) mod B.
+    uint stairBlock;
+    uint stairPhase;      // this frame's
+    uint stairPrevPhase;  // the previous frame's (history images were traced with it)
 };
 
 // P5 Eq. 2 normalized by its value at 80 degrees (1091.31); pi e^2 where the acuity is flat.
@@ -54,8 +60,12 @@ float vpAcuityInverse(float u) {
     return e;
 }
 
-// n(i): the phi height of column i, in [1, H].
+// n(i): the phi height of column i, in [1, H]. With the staircase, the height of the last column
+// of i's block column (the largest of the block: the fovea keeps at least its density).
 uint vpRows(VisualPolarMap m, uint column) {
+    if (m.stairBlock > 0u)
+        column = min(column + (m.stairBlock - 1u) - (column + m.stairPhase) % m.stairBlock,
+                     m.width - 1u);
     float rho = (float(column) + 0.5) / float(m.width);
     if (rho >= m.foveaFraction) return m.height;
     return clamp(uint(ceil(float(m.height) * rho / m.foveaFraction)), 1u, m.height);
@@ -96,6 +106,13 @@ vec2 vpToVisualPolar(VisualPolarMap m, vec2 p) {
     float t = r > 0.0 ? atan(d.y, d.x) / (2.0 * kVpPi) : 0.0;
     t = fract(t + 1.0);  // [-0.5, 0.5] -> [0, 1)
     return vec2(vpRhoOfEccentricity(m, r * kVpMaxDegrees / m.dMax), t);  // dMax >= 0.5
+}
+
+// The same map with the previous frame's phi heights: history images were traced with them (the
+// staircase moves with the block offsets every frame). Positions (rho, t) do not change.
+VisualPolarMap vpPrevious(VisualPolarMap m) {
+    m.stairPhase = m.stairPrevPhase;
+    return m;
 }
 
 // Screen position of texel (i, j)'s centre plus a jitter in VP texels (thesis §4.6.2: jitter
@@ -164,7 +181,13 @@ layout(std430) VISUAL_POLAR_ACCESS buffer VisualPolarParams {
     uvec4 grid;    // x W per eye, y H, z eye count, w 1 = valid
     vec4 fovea;    // x rho_f, y e_f, z screen eye width, w screen height
     vec4 eyes[2];  // xy gaze (eye pixels), z dMax
+    uvec4 stair;   // x staircase block B (0 = triangular clip), y this frame's block offset x,
+                   // z the previous frame's (both < B)
 } vp;
+
+uint vpStairPhase(uint offset, uint eye, uint width) {
+    return vp.stair.x == 0u ? 0u : (offset + eye * width) % vp.stair.x;
+}
 
 VisualPolarMap vpMapOfEye(uint eye) {
     VisualPolarMap m;
@@ -175,6 +198,9 @@ VisualPolarMap vpMapOfEye(uint eye) {
     m.height = max(vp.grid.y, 1u);
     m.foveaFraction = clamp(vp.fovea.x, 0.1, 1.0);  // kVisualPolarMinFoveaFraction
     m.foveaDegrees = max(vp.fovea.y, 1e-3);
+    m.stairBlock = vp.stair.x;
+    m.stairPhase = vpStairPhase(vp.stair.y, min(eye, 1u), m.width);
+    m.stairPrevPhase = vpStairPhase(vp.stair.z, min(eye, 1u), m.width);
     return m;
 }
 

@@ -112,7 +112,7 @@ void main() {
             // Clamping keeps floor() of a huge value well defined; such taps fail the bounds test.
             vec2 q = clamp(prev - 0.5, vec2(-4.0), vec2(pc.size) + 4.0);
             if (pc.useVp != 0) {
-                vpBilinearTaps(vm, prev, taps, weights);
+                vpBilinearTaps(vpPrevious(vm), prev, taps, weights);  // previous heights
                 for (int i = 0; i < 4; ++i) taps[i].x += x0;
             } else {
                 ivec2 base = ivec2(floor(q));
@@ -150,13 +150,14 @@ void main() {
                 if (pc.useVp != 0) {
                     // The texel holding prev in its own column (x clamped on rho, t wrapped).
                     int c = clamp(int(floor(prev.x)), 0, int(vm.width) - 1);
-                    float rows = float(vpRows(vm, uint(c)));  // >= 1
+                    float rows = float(vpRows(vpPrevious(vm), uint(c)));  // >= 1
                     centre = ivec2(c, min(int(fract(prev.y) * rows), int(rows) - 1));
                 }
                 for (int dy = -1; dy <= 1; ++dy)
                     for (int dx = -1; dx <= 1; ++dx) {
                         ivec2 t = centre + ivec2(dx, dy);
-                        if (pc.useVp != 0) t = vpNeighbour(vm, centre, ivec2(dx, dy)) + ivec2(x0, 0);
+                        if (pc.useVp != 0)
+                            t = vpNeighbour(vpPrevious(vm), centre, ivec2(dx, dy)) + ivec2(x0, 0);
                         if (!tapValid(t, w.xyz, n, limit2)) continue;
                         histC += imageLoad(prev_hist_color, t).rgb;
                         histM += imageLoad(prev_hist_moments, t).xy;

@@ -86,7 +86,8 @@ vec3 historyCatmullRom(vec2 h, ivec2 lo, ivec2 hi) {
 }
 
 // Visual-Polar history (seed 003 P5 §3.3): bilinear at the continuous position `h` (eye-local
-// x in columns, t = phi / 2 pi), each column at its own phi height, wrapped on phi.
+// x in columns, t = phi / 2 pi), each column at its own phi height, wrapped on phi. `m` carries
+// the previous frame's heights (vpPrevious: the staircase moves every frame).
 vec3 historyVisualPolar(VisualPolarMap m, vec2 h, int x0, ivec2 lo, ivec2 hi) {
     ivec2 taps[4];
     float weights[4];
@@ -155,7 +156,7 @@ void main() {
     if (pc.useHistory != 0 && onScreen) {
         // Visual-Polar: bilinear only (a Catmull-Rom across columns of different phi heights
         // would need 4 per-column row sets; not done).
-        vec3 hc = pc.useVp != 0      ? historyVisualPolar(m, h, x0, lo, hi)
+        vec3 hc = pc.useVp != 0      ? historyVisualPolar(vpPrevious(m), h, x0, lo, hi)
                   : pc.catmullRom != 0 ? historyCatmullRom(h, lo, hi)
                                        : historyBilinear(h, lo, hi);
         vec3 hy = toYCoCg(hc);

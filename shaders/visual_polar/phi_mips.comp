@@ -47,8 +47,8 @@ void main() {
     // P5 §3.4: levels the mapping never reads are not built (at reduction 0.61, 256x256 and a
     // centre gaze only level 1 is read).
     if (pc.level > highestLevelRead(eyes)) return;
-    VisualPolarMap m = vpMapOfEye(0u);
-    uint eye = min(uint(p.x) / m.width, eyes - 1u);
+    uint eye = min(uint(p.x) / max(vp.grid.x, 1u), eyes - 1u);
+    VisualPolarMap m = vpMapOfEye(eye);  // its own staircase phase (P5 §3.3)
     uint column = uint(p.x) - eye * m.width;
     if (column >= m.width) return;  // the spare column of an odd side-by-side width
     uint above = vpRowsAtLevel(m, column, pc.level - 1u);

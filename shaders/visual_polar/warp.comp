@@ -16,6 +16,9 @@ layout(push_constant) uniform Params {
     float foveaFraction;  // rho_f, clamped by the pass to [0.1, 0.5]
     float foveaDegrees;   // f^-1(rho_f), computed on the CPU
     uint traceOffscreen;  // 1: texels off the screen are traced too
+    uint stairBlock;      // P5 §3.3 staircase: block width B (0 = the triangular clip)
+    uint stairOffset;     // this frame's block offset x, < B
+    uint stairPrevOffset; // the previous frame's
 } pc;
 
 // P5 §3.2: the gaze at rho = 0 and rho scaled so that rho = 1 reaches the farthest corner.
@@ -26,6 +29,11 @@ VisualPolarMap makeMap(uint eye, uvec2 vpSize, uint eyes) {
     m.height = max(vpSize.y, 1u);
     m.foveaFraction = pc.foveaFraction;
     m.foveaDegrees = pc.foveaDegrees;
+    // Eye e's columns start at e W in the side-by-side image, where BMFR's blocks run on.
+    m.stairBlock = pc.stairBlock;
+    m.stairPhase = pc.stairBlock == 0u ? 0u : (pc.stairOffset + eye * m.width) % pc.stairBlock;
+    m.stairPrevPhase =
+        pc.stairBlock == 0u ? 0u : (pc.stairPrevOffset + eye * m.width) % pc.stairBlock;
     return vpWithGaze(m, clamp(camera_info.eyes[eye].gaze.xy, 0.0, 1.0) * m.screen);  // clamped
 }
 
@@ -40,6 +48,7 @@ void main() {
         vp.fovea = vec4(m0.foveaFraction, m0.foveaDegrees, m0.screen);
         vp.eyes[0] = vec4(m0.gaze, m0.dMax, 0.0);
         vp.eyes[1] = vec4(m1.gaze, m1.dMax, 0.0);
+        vp.stair = uvec4(pc.stairBlock, pc.stairOffset, pc.stairPrevOffset, 0u);
     }
     if (any(greaterThanEqual(p, size))) return;
     uint vpWidth = max(size.x / eyes, 1u);

@@ -10,12 +10,14 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "core/graph/GraphDesc.h"
 #include "core/graph/PassRegistry.h"
 #include "core/graph/RenderGraph.h"
+#include "core/sampling/BlockGrid.h"
 #include "core/sampling/VisualPolar.h"
 #include "core/scene/BuiltinScenes.h"
 #include "core/scene/Camera.h"
@@ -71,22 +73,26 @@ scene::FrameCamera camera(uint32_t w, uint32_t h, glm::vec2 gaze) {
 
 class VpTaaRig {
 public:
-    VpTaaRig(gpu::Context& gpu, uint32_t w, uint32_t h, bool connectVp, bool denoisers = false)
+    VpTaaRig(gpu::Context& gpu, uint32_t w, uint32_t h, bool connectVp, bool denoisers = false,
+             const std::string& warpParams = "{}", const std::string& bmfrParams = "{}")
         : mGpu(gpu), mGraph(gpu, registry()) {
         // alpha 0 and no clip: the result is the reprojected history alone.
         std::string text =
             R"({ "version": 1, "name": "vp_taa", "passes": [)"
-            R"( { "name": "warp", "type": "VisualPolarWarp" },)"
+            R"( { "name": "warp", "type": "VisualPolarWarp", "params": )" +
+            warpParams +
+            R"( },)"
             R"( { "name": "feed", "type": "VpTemporalFeed" },)"
             R"( { "name": "taa", "type": "TAA", "params": { "alpha": 0, "clip": "none" } })";
         if (denoisers)
-            text += R"(, { "name": "bmfr", "type": "BMFR" }, { "name": "svgf", "type": "SVGF",)"
+            text += R"(, { "name": "bmfr", "type": "BMFR", "params": )" + bmfrParams +
+                    R"( }, { "name": "svgf", "type": "SVGF",)"
                     R"( "params": { "feedbackTap": 0 } })";
         text += R"( ], "edges": [ { "from": "warp.coords", "to": "feed.coords" },)"
                 R"( { "from": "feed.color", "to": "taa.color" },)"
                 R"( { "from": "feed.motion", "to": "taa.motion" })";
         if (connectVp) text += R"(, { "from": "warp.vp", "to": "taa.vp" })";
-        std::string outputs = R"("taa.result")";
+        std::string outputs = R"("taa.result", "warp.coords")";
         if (denoisers) {
             for (const char* pass : {"bmfr", "svgf"}) {
                 const std::string d = pass;
@@ -96,6 +102,7 @@ public:
                 if (connectVp) text += R"(, { "from": "warp.vp", "to": ")" + d + R"(.vp" })";
                 outputs += R"(, ")" + d + R"(.accumulated")";
                 if (d == "svgf") outputs += R"(, "svgf.illumination")";
+                if (d == "bmfr") outputs += R"(, "bmfr.fitted")";
             }
             text += R"(, { "from": "feed.depth", "to": "svgf.depth" })";
         }
@@ -340,4 +347,177 @@ TEST_F(VisualPolarTemporalTest, SvgfSpatialTapsFollowColumnHeightsAndPhiSeam) {
     EXPECT_LT(worstSeam[1], 0.06);
     EXPECT_GT(worstSeam[0], 0.1) << "control: screen addressing must show the seam";
     EXPECT_GT(worst[0], 1.5 * worst[1]);
+}
+
+namespace {
+
+// P5 §3.3's staircase for frame `frame` of eye `eye` (the warp's P2 §6.1 block grid offsets).
+VisualPolarGrid staircaseGrid(glm::uvec2 vs, uint32_t eyes, uint32_t eye, uint64_t frame) {
+    auto grid = VisualPolarGrid::make(vs.x / eyes, vs.y, 0.24);
+    grid.stairBlock = uint32_t(sampling::kBlockGridSize);
+    grid.stairPhase =
+        uint32_t(sampling::blockGridOffset(frame)[0] + eye * grid.width) % grid.stairBlock;
+    return grid;
+}
+
+}  // namespace
+
+// The warp with `staircase` (P5 §3.3): every frame, the clipped texels are exactly those of the
+// C++ staircase for that frame's block offset (eye 1 of a stereo pair shifted by its first
+// column), each 32-column block column of the side-by-side image has one phi height, and no
+// column is thinner than the triangular clip.
+TEST_F(VisualPolarTemporalTest, WarpStaircaseFollowsTheMovingBlockGrid) {
+    const uint32_t w = 512, h = 192;  // stereo: 256x192 per eye, VP 171x128 per eye
+    VpTaaRig rig(ctx(), w, h, true, false, R"({ "staircase": true })");
+    const glm::uvec2 vs = rig.vpSize();
+    static const scene::Scene s = scene::loadBuiltinScene("builtin:plane");
+    scene::CameraRigOptions stereo;
+    stereo.stereo = true;
+    const glm::vec2 gazes[scene::kMaxEyes] = {{0.5f, 0.5f}, {0.3f, 0.6f}};
+    auto cam = scene::makeFrameCamera(s.cameras.empty() ? s.defaultCamera() : s.cameras.front(), w,
+                                      h, stereo, 0, nullptr, gazes);
+    const Image zero(size_t(vs.x) * vs.y * 4, 0.0f);
+    const auto triangle = VisualPolarGrid::make(vs.x / 2, vs.y, 0.24);
+    size_t mismatched = 0, thinner = 0, clipped = 0;
+    std::vector<uint32_t> firstHeights;
+    for (uint64_t frame = 0; frame < 6; ++frame) {
+        rig.frame(cam, zero, zero);
+        const Image coords = rig.output("warp.coords");
+        const int ox = sampling::blockGridOffset(frame)[0];
+        std::vector<uint32_t> height(vs.x, 0);  // per column of the side-by-side image
+        for (uint32_t eye = 0; eye < 2; ++eye) {
+            auto grid = staircaseGrid(vs, 2, eye, frame);
+            for (uint32_t i = 0; i < grid.width; ++i) {
+                const uint32_t x = eye * grid.width + i;
+                height[x] = grid.rows(i);
+                thinner += grid.rows(i) < triangle.rows(i);
+                for (uint32_t j = 0; j < vs.y; ++j) {
+                    bool off = coords[(size_t(j) * vs.x + x) * 4] == -1.0f;
+                    mismatched += off != (j >= grid.rows(i));
+                    clipped += off;
+                }
+            }
+        }
+        // One height per block column [b 32 - ox, b 32 - ox + 32) within each eye.
+        const uint32_t eyeWidth = vs.x / 2;  // an odd width leaves a spare last column
+        for (uint32_t x = 1; x < 2 * eyeWidth; ++x) {
+            bool sameBlock = (x + ox) % 32 != 0 && x != eyeWidth;
+            if (sameBlock) {
+                EXPECT_EQ(height[x], height[x - 1]) << "frame " << frame << " x " << x;
+            }
+        }
+        if (frame == 0) firstHeights = height;
+        if (frame == 1) {
+            EXPECT_NE(height, firstHeights) << "the staircase must move";
+        }
+    }
+    EXPECT_EQ(mismatched, 0u);
+    EXPECT_EQ(thinner, 0u);
+    EXPECT_GT(clipped, 0u) << "the staircase must still clip the fovea";
+}
+
+// A still camera and gaze with the staircase: the phi heights change every frame, so the same
+// texel index names another phi than last frame. TAA (alpha 0: the history alone) must return the
+// image of the previous frame at every texel's own screen point (taps at the PREVIOUS heights,
+// vpPrevious), and BMFR must keep every texel's history. The check is not vacuous: at many texels
+// the previous frame's texel with the same index showed a clearly different value.
+TEST_F(VisualPolarTemporalTest, StaircaseHistoryUsesThePreviousHeights) {
+    const uint32_t w = 256, h = 192;
+    const glm::vec2 gaze(0.5f, 0.5f);
+    auto cam = camera(w, h, gaze);
+    const glm::dvec3 eye(cam.eyes[0].position);
+    VpTaaRig rig(ctx(), w, h, true, true, R"({ "staircase": true })");
+    const glm::uvec2 vs = rig.vpSize();
+    // A function of the angle around the gaze: the same row index at another phi height is
+    // another angle, hence clearly another value.
+    const glm::dvec2 g = glm::dvec2(gaze) * glm::dvec2(w, h);
+    auto f = [&](glm::dvec2 p) { return 0.5 + 0.3 * std::cos(std::atan2(p.y - g.y, p.x - g.x)); };
+    auto world = [&](glm::dvec2 p) { return eye + glm::dvec3(p.x - w / 2.0, p.y - h / 2.0, -100); };
+    const Image still(size_t(vs.x) * vs.y * 4, 0.0f);
+    double worst = 0;
+    size_t checked = 0, lost = 0, sameIndexWrong = 0;
+    VisualPolarMapping before{};
+    for (uint64_t frame = 0; frame < 3; ++frame) {
+        auto m = VisualPolarMapping::make(staircaseGrid(vs, 1, 0, frame), glm::dvec2(w, h),
+                                          glm::dvec2(gaze));
+        auto img = [&](auto fn) { return texelImage(m, vs, fn); };
+        auto color = img([&](glm::dvec2 p) {
+            double v = frame == 0 ? f(p) : 0.0;
+            return glm::dvec4(v, v, v, 1);
+        });
+        const Image taa =
+            rig.frame(cam,
+                      {{"color", color},
+                       {"position", img([&](glm::dvec2 p) { return glm::dvec4(world(p), 1); })},
+                       {"normal", img([](glm::dvec2) { return glm::dvec4(0, 0, 1, 1); })},
+                       {"depth", img([](glm::dvec2) { return glm::dvec4(100, 0, 0, 1); })},
+                       {"motion", still}},
+                      "taa.result");
+        if (frame == 1) {
+            const Image bmfr = rig.output("bmfr.accumulated");
+            for (uint32_t i = 1; i + 1 < m.grid.width; ++i)
+                for (uint32_t j = 0; j < m.grid.rows(i); ++j) {
+                    const size_t k = (size_t(j) * vs.x + i) * 4;
+                    const glm::dvec2 p = m.texelToScreen(i, j);
+                    lost += std::abs(bmfr[k + 3] - 2.0f) > 1e-3f;
+                    // Bilinear in phi of a cosine: ~0.04 (2 pi / n)^2 off; compared where the
+                    // previous column had >= 24 rows (<= 0.003).
+                    if (before.grid.rows(i) < 24) continue;
+                    worst = std::max(worst, std::abs(double(taa[k]) - f(p)));
+                    ++checked;
+                    if (j < before.grid.rows(i))
+                        sameIndexWrong += std::abs(f(before.texelToScreen(i, j)) - f(p)) > 0.05;
+                }
+        }
+        before = m;
+    }
+    std::printf(
+        "staircase history: worst %.4f over %zu texels, BMFR lost %zu, %zu texels whose "
+        "same-index texel was > 0.05 off\n",
+        worst, checked, lost, sameIndexWrong);
+    ASSERT_GT(checked, size_t(10000));
+    EXPECT_GT(sameIndexWrong, size_t(100));
+    EXPECT_LT(worst, 0.02);
+    EXPECT_EQ(lost, 0u);
+}
+
+// BMFR on a Visual-Polar image with the staircase follows the warp's block columns even with its
+// own offsets off: with constant features the fit is one value per block, so the fitted image
+// steps exactly where the block columns start ((x + ox) mod 32 = 0, ox = this frame's offset);
+// without the staircase BMFR keeps its own grid (x mod 32 = 0).
+TEST_F(VisualPolarTemporalTest, BmfrBlockColumnsFollowTheStaircase) {
+    const uint32_t w = 256, h = 192;
+    const glm::vec2 gaze(0.5f, 0.5f);
+    auto cam = camera(w, h, gaze);
+    for (int staircase = 0; staircase < 2; ++staircase) {
+        VpTaaRig rig(ctx(), w, h, true, true, staircase ? R"({ "staircase": true })" : "{}",
+                     R"({ "blockOffsets": false })");
+        const glm::uvec2 vs = rig.vpSize();
+        std::mt19937 rng(7);
+        std::uniform_real_distribution<double> u(0.0, 1.0);
+        for (uint64_t frame = 0; frame < 2; ++frame) {
+            auto grid = staircase ? staircaseGrid(vs, 1, 0, frame)
+                                  : VisualPolarGrid::make(vs.x, vs.y, 0.24);
+            auto m = VisualPolarMapping::make(grid, glm::dvec2(w, h), glm::dvec2(gaze));
+            auto img = [&](auto fn) { return texelImage(m, vs, fn); };
+            const Image fitted =
+                rig.frame(cam,
+                          {{"color", img([&](glm::dvec2) {
+                                double v = u(rng);
+                                return glm::dvec4(v, v, v, 1);
+                            })},
+                           {"position", img([](glm::dvec2) { return glm::dvec4(1, 2, 3, 1); })},
+                           {"normal", img([](glm::dvec2) { return glm::dvec4(0, 0, 1, 1); })},
+                           {"depth", img([](glm::dvec2) { return glm::dvec4(100, 0, 0, 1); })},
+                           {"motion", Image(size_t(vs.x) * vs.y * 4, 0.0f)}},
+                          "bmfr.fitted");
+            const int ox = staircase ? sampling::blockGridOffset(frame)[0] : 0;
+            size_t wrong = 0;
+            for (uint32_t x = 1; x < grid.width; ++x) {
+                bool steps = fitted[size_t(x) * 4] != fitted[size_t(x - 1) * 4];  // row 0
+                wrong += steps != ((x + ox) % 32 == 0);
+            }
+            EXPECT_EQ(wrong, 0u) << "staircase " << staircase << " frame " << frame;
+        }
+    }
 }

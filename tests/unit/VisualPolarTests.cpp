@@ -3,10 +3,13 @@
 // sample density against the acuity model per eccentricity band.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <vector>
 
+#include "core/sampling/BlockGrid.h"
 #include "core/sampling/VisualPolar.h"
 
 using namespace fovea::sampling;
@@ -222,4 +225,40 @@ TEST(VisualPolar, BilinearReproducesConstantAndWrapsPhi) {
     double below = visualPolarBilinear(g, 0.7, 1.0 - 1e-9, 0, cosPhi);
     double above = visualPolarBilinear(g, 0.7, 1e-9, 0, cosPhi);
     EXPECT_NEAR(below, above, 1e-6);
+}
+
+// P5 §3.3's staircase: for each of the 16 block offsets, every 32-column block column has one phi
+// height (its last column's), no column is thinner than the triangular clip, columns outside the
+// fovea's block columns are untouched, and stairBlock = 0 is the triangular clip. Prints how many
+// more texels it traces (the price of a fovea that is never thinner) at P5's 853x960 and at a
+// 256x256 screen's 171x171.
+TEST(VisualPolar, StaircaseHasOneHeightPerBlockColumn) {
+    for (auto [w, h] : {std::pair<uint32_t, uint32_t>{853, 960}, {171, 171}}) {
+        const auto triangle = VisualPolarGrid::make(w, h, 0.24);
+        uint64_t least = ~0ull, most = 0;
+        for (int k = 0; k < fovea::sampling::kBlockGridOffsetCount; ++k) {
+            auto g = triangle;
+            g.stairBlock = fovea::sampling::kBlockGridSize;
+            g.stairPhase = uint32_t(fovea::sampling::blockGridOffset(k)[0]);
+            for (uint32_t i = 0; i < w; ++i) {
+                ASSERT_GE(g.rows(i), triangle.rows(i)) << i;
+                if ((i + g.stairPhase) % g.stairBlock != 0 && i > 0)
+                    ASSERT_EQ(g.rows(i), g.rows(i - 1)) << "offset " << k << " column " << i;
+                // The last column of a block column keeps its own height.
+                if ((i + 1 + g.stairPhase) % g.stairBlock == 0 || i + 1 == w)
+                    ASSERT_EQ(g.rows(i), triangle.rows(i)) << i;
+            }
+            least = std::min(least, g.validTexels());
+            most = std::max(most, g.validTexels());
+            g.stairBlock = 0;
+            for (uint32_t i = 0; i < w; ++i) ASSERT_EQ(g.rows(i), triangle.rows(i));
+        }
+        double t = double(triangle.validTexels());
+        std::printf("%ux%u: triangle %.0f texels, staircase %llu..%llu (+%.1f..%.1f %%)\n", w, h, t,
+                    (unsigned long long)least, (unsigned long long)most, 100 * (least / t - 1),
+                    100 * (most / t - 1));
+        EXPECT_GT(least, triangle.validTexels());
+        // At most one block column's worth of extra texels per fovea block column.
+        EXPECT_LT(double(most), t + double(h) * 32 * (std::ceil(0.24 * w / 32) + 1));
+    }
 }
