@@ -12,9 +12,9 @@
 // periphery), which this way are filled from their neighbours. The level `feedbackTap` also
 // writes the colour history (§4.1: the first level's output); the last level remodulates.
 #extension GL_GOOGLE_include_directive : require
-#include "svgf/svgf_common.glsl"
 #define VISUAL_POLAR_PARAMS
 #include "common/visual_polar.glsl"
+#include "svgf/svgf_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -71,7 +71,7 @@ void main() {
     vec3 np = svgfNormalAt(normal, p);
     vec4 result = centre;
     if (zp > 0.0) {
-        vec2 grad = svgfDepthGradient(depth, p, pc.size, zp);
+        vec2 grad = svgfDepthGradient(depth, p, pc.size, zp, pc.useVp != 0);
         float lp = luminance(centre.rgb);
         float varP = prefilteredVariance(p);  // >= 0
         float wc = imageLoad(accumulated, p).a > 0.0 ? kB3[0] * kB3[0] : 0.0;

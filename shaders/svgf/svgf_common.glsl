@@ -36,16 +36,28 @@ vec3 svgfNormalAt(sampler2D normalTex, ivec2 q) {
     return svgfFinite3(n) ? n : vec3(0.0);
 }
 
-// Screen-space depth gradient at p (specs §1: per axis the one-sided difference with the smaller
+// The texel one step away: screen addressing, or on a Visual-Polar image (useVp, where the
+// including shader has the `vp` block) the neighbour wrapped on phi at the target column's own
+// height (P5 §3.3; ivec2(-1) beyond the rho range, which the bounds test rejects).
+ivec2 svgfStep(ivec2 p, ivec2 step, bool useVp) {
+#ifdef VISUAL_POLAR_PARAMS
+    if (useVp) return vpImageNeighbour(p, step);
+#endif
+    return p + step;
+}
+
+// Image-space depth gradient at p (specs §1: per axis the one-sided difference with the smaller
 // magnitude, so a silhouette does not inflate it); 0 along an axis without a surface neighbour.
-vec2 svgfDepthGradient(sampler2D depthTex, ivec2 p, ivec2 size, float zp) {
+// On a Visual-Polar image the axes are rho (columns) and phi (rows of p's column), the units the
+// a-trous offsets are in.
+vec2 svgfDepthGradient(sampler2D depthTex, ivec2 p, ivec2 size, float zp, bool useVp) {
     vec2 g = vec2(0.0);
     for (int a = 0; a < 2; ++a) {
         ivec2 e = a == 0 ? ivec2(1, 0) : ivec2(0, 1);
         bool found = false;
         float best = 0.0;
         for (int s = -1; s <= 1; s += 2) {
-            ivec2 q = p + s * e;
+            ivec2 q = svgfStep(p, s * e, useVp);
             if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
             float zq = svgfDepthAt(depthTex, q);
             if (zq <= 0.0) continue;

@@ -13,9 +13,9 @@
 // (issue 12, docs/benchmarks.md "SVGF energy loss"). It also made sigma_l depend on the scene's
 // radiance units.
 #extension GL_GOOGLE_include_directive : require
-#include "svgf/svgf_common.glsl"
 #define VISUAL_POLAR_PARAMS
 #include "common/visual_polar.glsl"
+#include "svgf/svgf_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -58,7 +58,7 @@ void main() {
     vec3 C = acc.rgb;
     if (h < pc.historyForVariance) {
         atomicAdd(stats.counters[SVGF_STAT_SPATIAL_VARIANCE], 1u);
-        vec2 grad = svgfDepthGradient(depth, p, pc.size, zp);
+        vec2 grad = svgfDepthGradient(depth, p, pc.size, zp, pc.useVp != 0);
         vec3 sumC = vec3(0.0);
         vec2 sumM = vec2(0.0);
         float sumW = 0.0;
