@@ -97,6 +97,28 @@ vec3 historyVisualPolar(VisualPolarMap m, vec2 h, int x0, ivec2 lo, ivec2 hi) {
     return sum;
 }
 
+// Catmull-Rom on a Visual-Polar image (P5 §3.3): 4 columns around h.x (clamped on rho), and in
+// each column 4 rows around h.y = t at that column's OWN phi height, wrapped on phi; the row
+// weights are per column. 16 taps like the screen version; `m` has the previous frame's heights.
+vec3 historyVisualPolarCatmullRom(VisualPolarMap m, vec2 h, int x0, ivec2 lo, ivec2 hi) {
+    float x = h.x - 0.5;
+    float c1f = floor(x);
+    vec4 wx = catmullRomWeights(x - c1f);
+    vec3 sum = vec3(0.0);
+    for (int a = 0; a < 4; ++a) {
+        int c = clamp(int(c1f) - 1 + a, 0, int(m.width) - 1);
+        int n = int(vpRows(m, uint(c)));  // >= 1
+        float y = fract(h.y) * float(n) - 0.5;
+        float r1f = floor(y);  // >= -1
+        vec4 wy = catmullRomWeights(y - r1f);
+        for (int b = 0; b < 4; ++b) {
+            int r = ((int(r1f) - 1 + b) % n + n) % n;
+            sum += wx[a] * wy[b] * historyTap(ivec2(c + x0, r), lo, hi);
+        }
+    }
+    return sum;
+}
+
 // Moves `h` along the line towards `centre` until it lies in the box centre +- extent (Karis 2014
 // clip; unlike a per-channel clamp it keeps the hue of the history). extent >= 0. Divisions only
 // happen where |v| > extent >= 0, so |v| > 0; a zero-size box yields the centre.
@@ -154,11 +176,14 @@ void main() {
 
     vec3 outColor = c.rgb;  // no history: the current frame alone (alpha = 1)
     if (pc.useHistory != 0 && onScreen) {
-        // Visual-Polar: bilinear only (a Catmull-Rom across columns of different phi heights
-        // would need 4 per-column row sets; not done).
-        vec3 hc = pc.useVp != 0      ? historyVisualPolar(vpPrevious(m), h, x0, lo, hi)
-                  : pc.catmullRom != 0 ? historyCatmullRom(h, lo, hi)
-                                       : historyBilinear(h, lo, hi);
+        // Visual-Polar history at the previous frame's phi heights (vpPrevious: the staircase
+        // moves every frame), Catmull-Rom with per-column row sets or bilinear.
+        vec3 hc;
+        if (pc.useVp != 0)
+            hc = pc.catmullRom != 0 ? historyVisualPolarCatmullRom(vpPrevious(m), h, x0, lo, hi)
+                                    : historyVisualPolar(vpPrevious(m), h, x0, lo, hi);
+        else
+            hc = pc.catmullRom != 0 ? historyCatmullRom(h, lo, hi) : historyBilinear(h, lo, hi);
         vec3 hy = toYCoCg(hc);
         if (pc.clipMode == 1) {
             hy = clipToBox(hy, 0.5 * (mn + mx), 0.5 * (mx - mn));
