@@ -130,6 +130,18 @@ void main() {
     vec3 zScale;
     for (int c = 0; c < 3; ++c) zScale[c] = zMax[c] > 1e-30 && !empty ? zMax[c] : 1.0;
 
+    // A block without one valid pixel has nothing to fit: the extra row/column of blocks that
+    // the offsets push off the image, and on a Visual-Polar image the blocks that are all clipped
+    // or off-screen (13-16 of 49 at 256x256, a third of the fit's work). weighted_sum reads a
+    // block only for a valid pixel, so it never reads these; they get zeros and skip the QR.
+    // `empty` comes from shared memory: the whole workgroup returns together.
+    if (empty) {
+        if (t == 0u)
+            for (int k = 0; k < BMFR_COEF_STRIDE; ++k)
+                coefficients.v[block * BMFR_COEF_STRIDE + k] = 0.0;
+        return;
+    }
+
     // Unscaled features, then their per-block min/max (two min-reductions over columns 1..M-1).
     for (int j = 0; j < BMFR_ROWS_PER_THREAD; ++j) {
         float f[BMFR_M];
