@@ -400,8 +400,13 @@ TEST_F(VisualPolarPassTest, BmfrHistoryFollowsVisualPolarMotion) {
     const uint32_t n = 64;
     const scene::Scene cornell = scene::loadBuiltinScene("builtin:cornell");
     const scene::SceneGpu sceneGpu(ctx(), cornell);
-    const std::string text = R"({ "version": 1, "name": "vp_bmfr", "passes": [
-        { "name": "warp", "type": "VisualPolarWarp" }, { "name": "gb", "type": "GBuffer" },
+    // Both fovea clips: the triangle, and P5 §3.3's staircase, whose phi heights move every frame.
+    for (const char* staircase : {"false", "true"}) {
+        SCOPED_TRACE(std::string("staircase ") + staircase);
+        const std::string text = R"({ "version": 1, "name": "vp_bmfr", "passes": [
+        { "name": "warp", "type": "VisualPolarWarp", "params": { "staircase": )" +
+                                 std::string(staircase) +
+                                 R"( } }, { "name": "gb", "type": "GBuffer" },
         { "name": "pt", "type": "PathTrace" }, { "name": "bmfr", "type": "BMFR" } ],
       "edges": [ { "from": "warp.coords", "to": "gb.coords" }, { "from": "warp.vp", "to": "gb.vp" },
         { "from": "gb.visibility", "to": "pt.visibility" }, { "from": "gb.albedo", "to": "pt.albedo" },
@@ -409,55 +414,57 @@ TEST_F(VisualPolarPassTest, BmfrHistoryFollowsVisualPolarMotion) {
         { "from": "gb.normal", "to": "bmfr.normal" }, { "from": "gb.albedo", "to": "bmfr.albedo" },
         { "from": "gb.motion", "to": "bmfr.motion" }, { "from": "warp.vp", "to": "bmfr.vp" } ],
       "outputs": [ "bmfr.accumulated", "gb.position", "gb.motion" ] })";
-    CompileOptions o;
-    o.width = o.height = n;
-    o.sceneFeatures = sceneGpu.features();
-    RenderGraph g(ctx(), passRegistry());
-    g.setScene(&sceneGpu);
-    g.build(parseGraphText(text, "vp_bmfr"), o);
-    const auto& vpImage = g.image("bmfr.accumulated");
-    ASSERT_LT(vpImage.width(), n);  // BMFR runs on the grid, not the screen
-    scene::CameraDesc desc = cornell.cameras.at(0);
-    scene::FrameCamera previous;
-    auto frame = [&](uint64_t f, bool cut) {
-        scene::FrameCamera cam =
-            scene::makeFrameCamera(desc, n, n, {}, f, f == 0 ? nullptr : &previous, nullptr);
-        cam.cut = cut;
-        g.setCamera(cam);
-        previous = cam;
-        g.runFrame();
-        Image acc = g.image("bmfr.accumulated").downloadRGBA32F(ctx());
-        Image pos = g.image("gb.position").downloadRGBA32F(ctx());
-        size_t hits = 0, kept = 0;
-        float maxCount = 0;
-        for (size_t i = 0; i < acc.size(); i += 4) {
-            if (pos[i + 3] <= 0.0f) continue;
-            ++hits;
-            kept += acc[i + 3] >= 2.0f;
-            maxCount = std::max(maxCount, acc[i + 3]);
-            EXPECT_TRUE(std::isfinite(acc[i]) && std::isfinite(acc[i + 3]));
-        }
-        return std::tuple<size_t, size_t, float>{hits, kept, maxCount};
-    };
-    for (uint64_t f = 0; f < 3; ++f) frame(f, false);
-    auto [hits, kept, maxCount] = frame(3, false);
-    ASSERT_GT(hits, size_t(vpImage.width()) * vpImage.height() / 4);
-    EXPECT_GE(kept, hits * 95 / 100) << "a still camera accumulates everywhere";
-    EXPECT_GE(maxCount, 4.0f);
-    // A dolly step of 6 % of the distance: the view moves by a few texels.
-    desc.position += 0.06f * (desc.target - desc.position);
-    auto [hits2, kept2, max2] = frame(4, false);
-    const Image motion = g.image("gb.motion").downloadRGBA32F(ctx());
-    size_t moving = 0;
-    for (size_t i = 0; i < motion.size(); i += 4)
-        moving += motion[i] != 0.0f || motion[i + 1] != 0.0f;
-    EXPECT_GT(moving, hits2 / 2) << "the camera move must show in the motion";
-    // Measured: 97 % kept with the VP motion, 75 % with screen-pixel motion (gb.vp open).
-    EXPECT_GE(kept2, hits2 * 9 / 10) << "history lost on a small move: " << kept2 << "/" << hits2;
-    std::printf("kept after the move: %zu / %zu\n", kept2, hits2);
-    auto [hits3, kept3, max3] = frame(5, true);
-    EXPECT_EQ(kept3, 0u) << "a camera cut resets the history";
-    (void)maxCount, (void)max2, (void)max3, (void)hits3;
+        CompileOptions o;
+        o.width = o.height = n;
+        o.sceneFeatures = sceneGpu.features();
+        RenderGraph g(ctx(), passRegistry());
+        g.setScene(&sceneGpu);
+        g.build(parseGraphText(text, "vp_bmfr"), o);
+        const auto& vpImage = g.image("bmfr.accumulated");
+        ASSERT_LT(vpImage.width(), n);  // BMFR runs on the grid, not the screen
+        scene::CameraDesc desc = cornell.cameras.at(0);
+        scene::FrameCamera previous;
+        auto frame = [&](uint64_t f, bool cut) {
+            scene::FrameCamera cam =
+                scene::makeFrameCamera(desc, n, n, {}, f, f == 0 ? nullptr : &previous, nullptr);
+            cam.cut = cut;
+            g.setCamera(cam);
+            previous = cam;
+            g.runFrame();
+            Image acc = g.image("bmfr.accumulated").downloadRGBA32F(ctx());
+            Image pos = g.image("gb.position").downloadRGBA32F(ctx());
+            size_t hits = 0, kept = 0;
+            float maxCount = 0;
+            for (size_t i = 0; i < acc.size(); i += 4) {
+                if (pos[i + 3] <= 0.0f) continue;
+                ++hits;
+                kept += acc[i + 3] >= 2.0f;
+                maxCount = std::max(maxCount, acc[i + 3]);
+                EXPECT_TRUE(std::isfinite(acc[i]) && std::isfinite(acc[i + 3]));
+            }
+            return std::tuple<size_t, size_t, float>{hits, kept, maxCount};
+        };
+        for (uint64_t f = 0; f < 3; ++f) frame(f, false);
+        auto [hits, kept, maxCount] = frame(3, false);
+        ASSERT_GT(hits, size_t(vpImage.width()) * vpImage.height() / 4);
+        EXPECT_GE(kept, hits * 95 / 100) << "a still camera accumulates everywhere";
+        EXPECT_GE(maxCount, 4.0f);
+        // A dolly step of 6 % of the distance: the view moves by a few texels.
+        desc.position += 0.06f * (desc.target - desc.position);
+        auto [hits2, kept2, max2] = frame(4, false);
+        const Image motion = g.image("gb.motion").downloadRGBA32F(ctx());
+        size_t moving = 0;
+        for (size_t i = 0; i < motion.size(); i += 4)
+            moving += motion[i] != 0.0f || motion[i + 1] != 0.0f;
+        EXPECT_GT(moving, hits2 / 2) << "the camera move must show in the motion";
+        // Measured: 97 % kept with the VP motion, 75 % with screen-pixel motion (gb.vp open).
+        EXPECT_GE(kept2, hits2 * 9 / 10)
+            << "history lost on a small move: " << kept2 << "/" << hits2;
+        std::printf("kept after the move: %zu / %zu\n", kept2, hits2);
+        auto [hits3, kept3, max3] = frame(5, true);
+        EXPECT_EQ(kept3, 0u) << "a camera cut resets the history";
+        (void)maxCount, (void)max2, (void)max3, (void)hits3;
+    }
 }
 
 // A gaze jump with a still camera (P5 §3.3): the grid re-centres on the new gaze, so every texel
