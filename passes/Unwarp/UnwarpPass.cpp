@@ -9,8 +9,9 @@
 namespace fovea::passes {
 
 namespace {
-constexpr int kMaxLevels = 4;           // level 0 (the input) + mip1..mip3
-constexpr uint64_t kKeyBytes = 5 * 16;  // unwarp.comp: uvec4 key[5]
+constexpr int kMaxLevels = 4;               // level 0 (the input) + mip1..mip3
+constexpr uint64_t kKeyBytes = 5 * 16;      // unwarp_lookup.comp: uvec4 key[5]
+constexpr uint64_t kRebuildArgsBytes = 16;  // VkDispatchIndirectCommand, padded
 }  // namespace
 
 void UnwarpPass::params(graph::ParamVisitor& v) {
@@ -52,13 +53,18 @@ void UnwarpPass::reflect(graph::Reflection& r) const {
     r.internal("lookup_key", vk::Format::eUndefined)
         .buffer(kKeyBytes)
         .persistent()
-        .doc("the mapping key `lookup` was built for (unwarp.comp mappingKey)");
+        .doc("the mapping key `lookup` was built for (unwarp_lookup.comp mappingKey)");
 }
 
 void UnwarpPass::compile(graph::CompileContext& ctx) {
     mMips = ctx.createPipeline("visual_polar/phi_mips.comp");
+    mLookup = ctx.createPipeline("visual_polar/unwarp_lookup.comp", {}, {"unwarp_rebuild"});
     mMap = ctx.createPipeline("visual_polar/unwarp.comp");
     mBlurPipeline = ctx.createPipeline("visual_polar/foveated_blur.comp");
+    mRebuildArgs = std::make_unique<gpu::Buffer>(
+        ctx.gpu(), kRebuildArgsBytes,
+        vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eIndirectBuffer, false,
+        name() + ".rebuild");
     mKeyStored = false;  // a new lookup_key buffer holds no key yet
 }
 
@@ -78,20 +84,29 @@ void UnwarpPass::execute(graph::ExecuteContext& ctx) {
         mMips->dispatch(ctx.cmd(), vpImage.width(), (vpImage.height() + 1) / 2);
         gpu::computeToComputeBarrier(ctx.cmd());
     }
-    // P5 §3.4-3.5: the sampling positions and sigma per pixel come from `lookup`, rebuilt by the
-    // mapping dispatch when its key changed; then the key of this frame is stored.
+    // P5 §3.4-3.5: the sampling positions and sigma per pixel live in `lookup`. A one-thread
+    // dispatch compares the mapping key with the stored one and writes the rebuild's group counts
+    // (none when unchanged), so the rebuild's math runs only for a new mapping: a per-pixel
+    // branch would not skip it on llvmpipe (docs/passes/Unwarp.md "Cost").
     const float sigmaMax = mBlurSigma * float(out.height()) / 1440.0f;
-    ctx.bindFields(*mMap);
-    mMap->set("levels", uint32_t(levels))
-        .set("toResult", uint32_t(!mBlur))
+    const auto groups = mLookup->groupCount(out.width(), out.height());
+    ctx.bindFields(*mLookup);
+    mLookup->bind("unwarp_rebuild", *mRebuildArgs)
+        .set("levels", uint32_t(levels))
         .set("sigmaMax", sigmaMax)
         .set("blurDegrees", mBlurDegrees)
         .set("useCache", uint32_t(mCache && mKeyStored))
+        .set("groupsX", groups[0])
+        .set("groupsY", groups[1])
         .set("mode", 0u);
-    mMap->dispatch(ctx.cmd(), out.width(), out.height());
+    mLookup->dispatch(ctx.cmd(), 1, 1);
+    gpu::computeToIndirectBarrier(ctx.cmd());
+    mLookup->set("mode", 1u);
+    mLookup->dispatchIndirect(ctx.cmd(), *mRebuildArgs);
     gpu::computeToComputeBarrier(ctx.cmd());
-    mMap->set("mode", 1u);
-    mMap->dispatch(ctx.cmd(), 1, 1);
+    ctx.bindFields(*mMap);
+    mMap->set("levels", uint32_t(levels)).set("toResult", uint32_t(!mBlur));
+    mMap->dispatch(ctx.cmd(), out.width(), out.height());
     mKeyStored = true;
     if (!mBlur) return;
     // Two separable passes.
