@@ -9,9 +9,12 @@
 namespace fovea::passes {
 
 namespace {
-constexpr int kMaxLevels = 4;               // level 0 (the input) + mip1..mip3
-constexpr uint64_t kKeyBytes = 5 * 16;      // unwarp_lookup.comp: uvec4 key[5]
-constexpr uint64_t kRebuildArgsBytes = 16;  // VkDispatchIndirectCommand, padded
+constexpr int kMaxLevels = 4;           // level 0 (the input) + mip1..mip3
+constexpr uint64_t kKeyBytes = 5 * 16;  // unwarp_lookup.comp: uvec4 key[5]
+// unwarp_lookup.comp's unwarp_rebuild: 4 VkDispatchIndirectCommands padded to 16 bytes (the
+// lookup rebuild, phi mip levels 1..3).
+constexpr uint64_t kArgsStride = 16;
+constexpr uint64_t kRebuildArgsBytes = 4 * kArgsStride;
 }  // namespace
 
 void UnwarpPass::params(graph::ParamVisitor& v) {
@@ -60,7 +63,9 @@ void UnwarpPass::compile(graph::CompileContext& ctx) {
     mMips = ctx.createPipeline("visual_polar/phi_mips.comp");
     mLookup = ctx.createPipeline("visual_polar/unwarp_lookup.comp", {}, {"unwarp_rebuild"});
     mMap = ctx.createPipeline("visual_polar/unwarp.comp");
-    mBlurPipeline = ctx.createPipeline("visual_polar/foveated_blur.comp");
+    mBlurRows = ctx.createPipeline("visual_polar/foveated_blur.comp");
+    mBlurColumns =
+        ctx.createPipeline("visual_polar/foveated_blur.comp", {{"FOVEATED_BLUR_VERTICAL", "1"}});
     mRebuildArgs = std::make_unique<gpu::Buffer>(
         ctx.gpu(), kRebuildArgsBytes,
         vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eIndirectBuffer, false,
@@ -76,20 +81,14 @@ void UnwarpPass::execute(graph::ExecuteContext& ctx) {
     const auto& vpImage = ctx.image("mip1");
     const auto& out = ctx.image("result");
     const int levels = std::clamp(mLevels, 1, kMaxLevels);
-    // P5 §3.4: level k of a column holds ceil(n / 2^k) rows, each the average of two rows of
-    // level k - 1 (wrapped); one dispatch per level, ordered by barriers.
-    ctx.bindFields(*mMips);
-    for (int level = 1; level < levels; ++level) {
-        mMips->set("level", uint32_t(level));
-        mMips->dispatch(ctx.cmd(), vpImage.width(), (vpImage.height() + 1) / 2);
-        gpu::computeToComputeBarrier(ctx.cmd());
-    }
     // P5 §3.4-3.5: the sampling positions and sigma per pixel live in `lookup`. A one-thread
-    // dispatch compares the mapping key with the stored one and writes the rebuild's group counts
-    // (none when unchanged), so the rebuild's math runs only for a new mapping: a per-pixel
-    // branch would not skip it on llvmpipe (docs/passes/Unwarp.md "Cost").
+    // dispatch compares the mapping key with the stored one and writes the group counts of the
+    // rebuild (none when unchanged) and of the phi mip levels (none for a level the mapping
+    // never reads), so neither costs a dispatch over the image for nothing: a per-pixel branch
+    // would not skip the rebuild's math on llvmpipe (docs/passes/Unwarp.md "Cost").
     const float sigmaMax = mBlurSigma * float(out.height()) / 1440.0f;
     const auto groups = mLookup->groupCount(out.width(), out.height());
+    const auto mipGroups = mMips->groupCount(vpImage.width(), (vpImage.height() + 1) / 2);
     ctx.bindFields(*mLookup);
     mLookup->bind("unwarp_rebuild", *mRebuildArgs)
         .set("levels", uint32_t(levels))
@@ -98,9 +97,19 @@ void UnwarpPass::execute(graph::ExecuteContext& ctx) {
         .set("useCache", uint32_t(mCache && mKeyStored))
         .set("groupsX", groups[0])
         .set("groupsY", groups[1])
+        .set("mipGroupsX", mipGroups[0])
+        .set("mipGroupsY", mipGroups[1])
         .set("mode", 0u);
     mLookup->dispatch(ctx.cmd(), 1, 1);
     gpu::computeToIndirectBarrier(ctx.cmd());
+    // P5 §3.4: level k of a column holds ceil(n / 2^k) rows, each the average of two rows of
+    // level k - 1 (wrapped); one dispatch per level, ordered by barriers.
+    ctx.bindFields(*mMips);
+    for (int level = 1; level < levels; ++level) {
+        mMips->set("level", uint32_t(level));
+        mMips->dispatchIndirect(ctx.cmd(), *mRebuildArgs, kArgsStride * uint64_t(level));
+        gpu::computeToComputeBarrier(ctx.cmd());
+    }
     mLookup->set("mode", 1u);
     mLookup->dispatchIndirect(ctx.cmd(), *mRebuildArgs);
     gpu::computeToComputeBarrier(ctx.cmd());
@@ -109,13 +118,13 @@ void UnwarpPass::execute(graph::ExecuteContext& ctx) {
     mMap->dispatch(ctx.cmd(), out.width(), out.height());
     mKeyStored = true;
     if (!mBlur) return;
-    // Two separable passes.
-    ctx.bindFields(*mBlurPipeline);
-    for (uint32_t vertical = 0; vertical < 2; ++vertical) {
-        gpu::computeToComputeBarrier(ctx.cmd());
-        mBlurPipeline->set("vertical", vertical);
-        mBlurPipeline->dispatch(ctx.cmd(), out.width(), out.height());
-    }
+    // Two separable passes: rows into blur_tmp, then columns into result.
+    gpu::computeToComputeBarrier(ctx.cmd());
+    ctx.bindFields(*mBlurRows);
+    mBlurRows->dispatch(ctx.cmd(), out.width(), out.height());
+    gpu::computeToComputeBarrier(ctx.cmd());
+    ctx.bindFields(*mBlurColumns);
+    mBlurColumns->dispatch(ctx.cmd(), out.width(), out.height());
 }
 
 }  // namespace fovea::passes

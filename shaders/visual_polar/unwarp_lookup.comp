@@ -4,7 +4,7 @@
 // `lookup` image. mode 0 (one thread) compares the mapping key (the `vp` block, the field of view,
 // the level count and the blur profile) with the one `lookup_key` holds, stores the new key and
 // writes the group counts of the rebuild: all groups when it changed (or the cache is off), none
-// otherwise. mode 1 is that rebuild, dispatched indirectly, so a frame with an unchanged key runs
+// otherwise; and those of the phi mip levels (phi_mip_levels.glsl: none for an unread level). mode 1 is that rebuild, dispatched indirectly, so a frame with an unchanged key runs
 // none of this math (on lavapipe a per-pixel `if (stale)` would not: llvmpipe executes both sides
 // of a branch under a lane mask; docs/passes/Unwarp.md "Cost").
 #extension GL_GOOGLE_include_directive : require
@@ -12,14 +12,19 @@
 #include "../common/camera.glsl"
 #define VISUAL_POLAR_PARAMS
 #include "../common/visual_polar.glsl"
+#include "phi_mip_levels.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
 // Per pixel: x rho, y t, z mip level L, w the blur's sigma (P5 §3.5); persistent.
 layout(rgba32f) uniform writeonly image2D lookup;
 layout(std430) buffer LookupKey { uvec4 key[5]; } lookup_key;
-// VkDispatchIndirectCommand of the mode-1 dispatch (pass-owned, INDIRECT usage).
-layout(std430) buffer unwarp_rebuild { uint rebuildGroups[3]; };
+// VkDispatchIndirectCommands (x, y, z, padding), pass-owned with INDIRECT usage: the mode-1
+// rebuild, then phi_mips.comp's levels 1..3.
+layout(std430) buffer unwarp_rebuild {
+    uvec4 rebuildGroups;
+    uvec4 mipGroups[3];
+};
 
 layout(push_constant) uniform Params {
     uint levels;        // 1..4
@@ -29,6 +34,8 @@ layout(push_constant) uniform Params {
     uint mode;          // 0: key check (one thread), 1: rebuild
     uint groupsX;       // the rebuild's group counts when it runs
     uint groupsY;
+    uint mipGroupsX;    // phi_mips.comp's group counts for a level it builds
+    uint mipGroupsY;
 } pc;
 
 // Everything the lookup depends on besides the output size (a resize recompiles the pass).
@@ -76,9 +83,13 @@ void main() {
             stale = stale || any(notEqual(lookup_key.key[k], key));
             lookup_key.key[k] = key;
         }
-        rebuildGroups[0] = stale ? pc.groupsX : 0u;
-        rebuildGroups[1] = stale ? pc.groupsY : 0u;
-        rebuildGroups[2] = 1u;
+        rebuildGroups = stale ? uvec4(pc.groupsX, pc.groupsY, 1u, 0u) : uvec4(0u, 0u, 1u, 0u);
+        // P5 §3.4: no dispatch for a phi level the mapping never reads (at reduction 0.61,
+        // 256x256 and a centre gaze only level 1 is read); pc.levels bounds the C++ loop.
+        uint highest = highestLevelRead(clamp(vp.grid.z, 1u, 2u));
+        for (uint level = 1u; level <= 3u; ++level)
+            mipGroups[level - 1u] = level <= highest ? uvec4(pc.mipGroupsX, pc.mipGroupsY, 1u, 0u)
+                                                     : uvec4(0u, 0u, 1u, 0u);
         return;
     }
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
