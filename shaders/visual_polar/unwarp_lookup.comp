@@ -4,9 +4,10 @@
 // `lookup` image. mode 0 (one thread) compares the mapping key (the `vp` block, the field of view,
 // the level count and the blur profile) with the one `lookup_key` holds, stores the new key and
 // writes the group counts of the rebuild: all groups when it changed (or the cache is off), none
-// otherwise; and those of the phi mip levels (phi_mip_levels.glsl: none for an unread level). mode 1 is that rebuild, dispatched indirectly, so a frame with an unchanged key runs
-// none of this math (on lavapipe a per-pixel `if (stale)` would not: llvmpipe executes both sides
-// of a branch under a lane mask; docs/passes/Unwarp.md "Cost").
+// otherwise; and those of the phi mip levels (phi_mip_levels.glsl: none for an unread level).
+// mode 1 is that rebuild, dispatched indirectly, so a frame with an unchanged key runs none of
+// this math (on lavapipe a per-pixel `if (stale)` would not: llvmpipe executes both sides of a
+// branch under a lane mask; docs/passes/Unwarp.md "Cost").
 #extension GL_GOOGLE_include_directive : require
 
 #include "../common/camera.glsl"
