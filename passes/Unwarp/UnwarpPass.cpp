@@ -11,7 +11,11 @@ namespace fovea::passes {
 
 namespace {
 constexpr int kMaxLevels = 4;           // level 0 (the input) + mip1..mip3
-constexpr uint64_t kKeyBytes = 5 * 16;  // unwarp.comp: uvec4 key[5]
+constexpr uint64_t kKeyBytes = 5 * 16;  // unwarp_lookup.comp: uvec4 key[5]
+// unwarp_lookup.comp's unwarp_rebuild: 4 VkDispatchIndirectCommands padded to 16 bytes (the
+// lookup rebuild, phi mip levels 1..3).
+constexpr uint64_t kArgsStride = 16;
+constexpr uint64_t kRebuildArgsBytes = 4 * kArgsStride;
 }  // namespace
 
 void UnwarpPass::params(graph::ParamVisitor& v) {
@@ -55,13 +59,20 @@ void UnwarpPass::reflect(graph::Reflection& r) const {
     r.internal("lookup_key", vk::Format::eUndefined)
         .buffer(kKeyBytes)
         .persistent()
-        .doc("the mapping key `lookup` was built for (unwarp.comp mappingKey)");
+        .doc("the mapping key `lookup` was built for (unwarp_lookup.comp mappingKey)");
 }
 
 void UnwarpPass::compile(graph::CompileContext& ctx) {
     mMips = ctx.createPipeline("visual_polar/phi_mips.comp");
+    mLookup = ctx.createPipeline("visual_polar/unwarp_lookup.comp", {}, {"unwarp_rebuild"});
     mMap = ctx.createPipeline("visual_polar/unwarp.comp");
-    mBlurPipeline = ctx.createPipeline("visual_polar/foveated_blur.comp");
+    mBlurRows = ctx.createPipeline("visual_polar/foveated_blur.comp");
+    mBlurColumns =
+        ctx.createPipeline("visual_polar/foveated_blur.comp", {{"FOVEATED_BLUR_VERTICAL", "1"}});
+    mRebuildArgs = std::make_unique<gpu::Buffer>(
+        ctx.gpu(), kRebuildArgsBytes,
+        vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eIndirectBuffer, false,
+        name() + ".rebuild");
     mKeyStored = false;  // a new lookup_key buffer holds no key yet
 }
 
@@ -73,37 +84,50 @@ void UnwarpPass::execute(graph::ExecuteContext& ctx) {
     const auto& vpImage = ctx.image("mip1");
     const auto& out = ctx.image("result");
     const int levels = std::clamp(mLevels, 1, kMaxLevels);
+    // P5 §3.4-3.5: the sampling positions and sigma per pixel live in `lookup`. A one-thread
+    // dispatch compares the mapping key with the stored one and writes the group counts of the
+    // rebuild (none when unchanged) and of the phi mip levels (none for a level the mapping
+    // never reads), so neither costs a dispatch over the image for nothing: a per-pixel branch
+    // would not skip the rebuild's math on llvmpipe (docs/passes/Unwarp.md "Cost").
+    const float sigmaMax = mBlurSigma * float(out.height()) / 1440.0f;
+    const auto groups = mLookup->groupCount(out.width(), out.height());
+    const auto mipGroups = mMips->groupCount(vpImage.width(), (vpImage.height() + 1) / 2);
+    ctx.bindFields(*mLookup);
+    mLookup->bind("unwarp_rebuild", *mRebuildArgs)
+        .set("levels", uint32_t(levels))
+        .set("sigmaMax", sigmaMax)
+        .set("blurDegrees", mBlurDegrees)
+        .set("useCache", uint32_t(mCache && mKeyStored))
+        .set("groupsX", groups[0])
+        .set("groupsY", groups[1])
+        .set("mipGroupsX", mipGroups[0])
+        .set("mipGroupsY", mipGroups[1])
+        .set("mode", 0u);
+    mLookup->dispatch(ctx.cmd(), 1, 1);
+    gpu::computeToIndirectBarrier(ctx.cmd());
     // P5 §3.4: level k of a column holds ceil(n / 2^k) rows, each the average of two rows of
     // level k - 1 (wrapped); one dispatch per level, ordered by barriers.
     ctx.bindFields(*mMips);
     for (int level = 1; level < levels; ++level) {
         mMips->set("level", uint32_t(level));
-        mMips->dispatch(ctx.cmd(), vpImage.width(), (vpImage.height() + 1) / 2);
+        mMips->dispatchIndirect(ctx.cmd(), *mRebuildArgs, kArgsStride * uint64_t(level));
         gpu::computeToComputeBarrier(ctx.cmd());
     }
-    // P5 §3.4-3.5: the sampling positions and sigma per pixel come from `lookup`, rebuilt by the
-    // mapping dispatch when its key changed; then the key of this frame is stored.
-    const float sigmaMax = mBlurSigma * float(out.height()) / 1440.0f;
-    ctx.bindFields(*mMap);
-    mMap->set("levels", uint32_t(levels))
-        .set("toResult", uint32_t(!mBlur))
-        .set("sigmaMax", sigmaMax)
-        .set("blurDegrees", mBlurDegrees)
-        .set("useCache", uint32_t(mCache && mKeyStored))
-        .set("mode", 0u);
-    mMap->dispatch(ctx.cmd(), out.width(), out.height());
+    mLookup->set("mode", 1u);
+    mLookup->dispatchIndirect(ctx.cmd(), *mRebuildArgs);
     gpu::computeToComputeBarrier(ctx.cmd());
-    mMap->set("mode", 1u);
-    mMap->dispatch(ctx.cmd(), 1, 1);
+    ctx.bindFields(*mMap);
+    mMap->set("levels", uint32_t(levels)).set("toResult", uint32_t(!mBlur));
+    mMap->dispatch(ctx.cmd(), out.width(), out.height());
     mKeyStored = true;
     if (!mBlur) return;
-    // Two separable passes.
-    ctx.bindFields(*mBlurPipeline);
-    for (uint32_t vertical = 0; vertical < 2; ++vertical) {
-        gpu::computeToComputeBarrier(ctx.cmd());
-        mBlurPipeline->set("vertical", vertical);
-        mBlurPipeline->dispatch(ctx.cmd(), out.width(), out.height());
-    }
+    // Two separable passes: rows into blur_tmp, then columns into result.
+    gpu::computeToComputeBarrier(ctx.cmd());
+    ctx.bindFields(*mBlurRows);
+    mBlurRows->dispatch(ctx.cmd(), out.width(), out.height());
+    gpu::computeToComputeBarrier(ctx.cmd());
+    ctx.bindFields(*mBlurColumns);
+    mBlurColumns->dispatch(ctx.cmd(), out.width(), out.height());
 }
 
 }  // namespace fovea::passes

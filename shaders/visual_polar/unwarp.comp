@@ -4,10 +4,10 @@
 // to the edge), in each column bilinear in phi at that column's own height, wrapped (hides the
 // phi seam); trilinear across the phi-only mips where one pixel covers several phi rows (the
 // fovea). The gaze pixel maps to rho ~ 0, t = 0: finite, never a division by zero.
-// P5 §3.4 precomputes the sampling positions: the per-pixel (rho, t), mip level and blur sigma
-// live in the persistent `lookup` image and are recomputed only when the mapping key (the `vp`
-// block, the field of view, the level count and the blur profile) differs from the one stored
-// in `lookup_key` by the last rebuild (mode 1 stores it after the frame's mapping dispatch).
+// The per-pixel (rho, t), mip level and blur sigma come from the persistent `lookup` image, built
+// by unwarp_lookup.comp only when the mapping changed (P5 §3.4 precomputes them): this dispatch
+// does only the fetches, with no branch around expensive work (llvmpipe runs both sides of a
+// divergent branch; docs/passes/Unwarp.md "Cost").
 #extension GL_GOOGLE_include_directive : require
 
 #include "../common/camera.glsl"
@@ -23,54 +23,12 @@ layout(rgba32f) uniform readonly image2D mip3;
 layout(rgba32f) uniform writeonly image2D unwarped;
 layout(rgba32f) uniform writeonly image2D result;
 // Per pixel: x rho, y t, z mip level L, w the blur's sigma (P5 §3.5); persistent.
-layout(rgba32f) uniform image2D lookup;
-layout(std430) buffer LookupKey { uvec4 key[5]; } lookup_key;
+layout(rgba32f) uniform readonly image2D lookup;
 
 layout(push_constant) uniform Params {
-    uint levels;        // 1..4
-    uint toResult;      // 1: write `result` (no blur follows), 0: `unwarped` and `sigma`
-    float sigmaMax;     // blur sigma (pixels) at blurDegrees for this height
-    float blurDegrees;  // >= 1
-    uint useCache;      // 0: recompute the lookup every frame (benchmarks, tests)
-    uint mode;          // 0: map, 1: store the key of this frame (one thread)
+    uint levels;    // 1..4
+    uint toResult;  // 1: write `result` (no blur follows), 0: `unwarped` for the blur
 } pc;
-
-// Everything the lookup depends on besides the output size (a resize recompiles the pass).
-uvec4 mappingKey(int k) {
-    if (k == 0) return vp.grid;
-    if (k == 1) return floatBitsToUint(vp.fovea);
-    if (k == 2) return floatBitsToUint(vp.eyes[0]);
-    if (k == 3) return floatBitsToUint(vp.eyes[1]);
-    return floatBitsToUint(vec4(camera_info.jitter.zw, pc.sigmaMax, pc.blurDegrees)) ^
-           uvec4(0u, 0u, 0u, pc.levels << 16);
-}
-
-// View-space direction through a point of an eye image (camera.glsl's cameraRay convention).
-vec3 viewDirection(vec2 local) {
-    vec2 size = vec2(max(cameraEyeSize(), uvec2(1u)));
-    vec2 ndc = vec2(2.0 * local.x / size.x - 1.0, 1.0 - 2.0 * local.y / size.y);
-    float t = camera_info.jitter.z;
-    return vec3(ndc.x * t * camera_info.jitter.w, ndc.y * t, -1.0);
-}
-
-// Angle in degrees between two view directions (atan form: accurate for small angles).
-float angleDegrees(vec3 a, vec3 b) { return degrees(atan(length(cross(a, b)), dot(a, b))); }
-
-// P5 §3.5: 0 inside the fovea, linear in the eccentricity (degrees) from the fovea's edge to
-// sigmaMax at blurDegrees, clamped beyond (ours).
-float sigmaAt(VisualPolarMap m, vec2 local) {
-    vec2 d = local - m.gaze;
-    float r = length(d);
-    float rFovea = m.dMax * m.foveaDegrees / kVpMaxDegrees;
-    if (r <= rFovea) return 0.0;
-    vec3 g = viewDirection(m.gaze);
-    float e = angleDegrees(viewDirection(local), g);
-    float eEdge = angleDegrees(viewDirection(m.gaze + d * (rFovea / r)), g);  // r > rFovea >= 0
-    // A fovea wider than blurDegrees: full sigma right outside it.
-    float span = max(pc.blurDegrees - eEdge, 1e-3);
-    return pc.sigmaMax * clamp((e - eEdge) / span, 0.0, 1.0);
-}
-
 
 vec4 loadLevel(uint level, ivec2 p) {
     if (level == 0u) return texelFetch(color, p, 0);
@@ -86,8 +44,10 @@ vec4 columnSample(VisualPolarMap m, uint eye, uint column, float t, uint level) 
     float j0f = floor(y);
     float fy = y - j0f;
     int j0 = int(j0f);
-    int a = (j0 % int(n) + int(n)) % int(n);
-    int b = (a + 1) % int(n);
+    // y is in [-0.5, n - 0.5), so j0 in [-1, n - 1]: the wrap is two selects (an integer `%`
+    // costs a scalar division per lane on llvmpipe).
+    int a = j0 < 0 ? int(n) - 1 : j0;
+    int b = a + 1 >= int(n) ? 0 : a + 1;
     int x = int(eye * m.width + column);
     return mix(loadLevel(level, ivec2(x, a)), loadLevel(level, ivec2(x, b)), fy);
 }
@@ -103,44 +63,20 @@ vec4 bilinear(VisualPolarMap m, uint eye, vec2 rt, uint level) {
 }
 
 void main() {
-    if (pc.mode == 1u) {
-        if (gl_GlobalInvocationID.xy == uvec2(0u))
-            for (int k = 0; k < 5; ++k) lookup_key.key[k] = mappingKey(k);
-        return;
-    }
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = ivec2(cameraImageSize());
     if (p.x >= size.x || p.y >= size.y) return;
     uint eyes = clamp(vp.grid.z, 1u, 2u);
     uint eye = min(cameraEyeOf(uint(p.x)), eyes - 1u);
     VisualPolarMap m = vpMapOfEye(eye);
-    bool stale = pc.useCache == 0u;
-    for (int k = 0; k < 5; ++k) stale = stale || any(notEqual(lookup_key.key[k], mappingKey(k)));
-    vec4 lk;
-    if (stale) {
-        vec2 local = vec2(p) + 0.5 - vec2(float(eye * cameraEyeSize().x), 0.0);
-        vec2 rt = vpToVisualPolar(m, local);
-        // Rows per screen pixel along phi: n / (2 pi r) with the continuous height n = H rho /
-        // rho_f in the fovea (constant there: H / (2 pi r_f), no singularity at the gaze), H
-        // beyond; the level brings it to <= 1 (P5 §3.4).
-        float n = float(m.height) * min(rt.x / m.foveaFraction, 1.0);
-        float rFovea = m.dMax * m.foveaDegrees / kVpMaxDegrees;
-        float rowsPerPixel = rt.x < m.foveaFraction
-                                 ? float(m.height) / max(2.0 * kVpPi * rFovea, 1e-6)
-                                 : n / max(2.0 * kVpPi * length(local - m.gaze), 1e-6);
-        float L = clamp(log2(max(rowsPerPixel, 1.0)), 0.0, float(max(pc.levels, 1u) - 1u));
-        lk = vec4(rt, L, sigmaAt(m, local));
-        imageStore(lookup, p, lk);
-    } else {
-        lk = imageLoad(lookup, p);
-    }
+    vec4 lk = imageLoad(lookup, p);
     vec2 rt = lk.xy;
     float L = lk.z;
     uint l0 = uint(floor(L));
     uint l1 = min(l0 + 1u, max(pc.levels, 1u) - 1u);
     vec4 c = bilinear(m, eye, rt, l0);
     // Only where level l1 has a weight: most of the periphery maps at L = 0 exactly (at most one
-    // phi row per pixel), so it skips half the fetches.
+    // phi row per pixel).
     float fl = L - float(l0);
     if (l1 != l0 && fl > 0.0) c = mix(c, bilinear(m, eye, rt, l1), fl);
     // NaN/Inf in the VP image never reach the screen.

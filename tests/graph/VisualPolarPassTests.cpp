@@ -72,11 +72,14 @@ scene::FrameCamera camera(uint32_t w, uint32_t h, bool stereo, glm::vec2 left,
 
 class VpRig {
 public:
-    VpRig(gpu::Context& gpu, uint32_t w, uint32_t h, const std::string& unwarpParams)
+    VpRig(gpu::Context& gpu, uint32_t w, uint32_t h, const std::string& unwarpParams,
+          const std::string& warpParams = "{}")
         : mGpu(gpu), mGraph(gpu, registry()) {
         const std::string text =
             R"({ "version": 1, "name": "vp_test", "passes": [)"
-            R"( { "name": "warp", "type": "VisualPolarWarp" },)"
+            R"( { "name": "warp", "type": "VisualPolarWarp", "params": )" +
+            warpParams +
+            R"( },)"
             R"( { "name": "feed", "type": "VpFeed" },)"
             R"( { "name": "un", "type": "Unwarp", "params": )" +
             unwarpParams +
@@ -113,9 +116,10 @@ private:
     RenderGraph mGraph;
 };
 
-// The mapping of one eye as the pass builds it (default reduction 0.61, rho_f 0.24).
-VisualPolarMapping mappingOf(glm::uvec2 vpSize, uint32_t eyes, glm::uvec2 eyeSize, glm::vec2 gaze) {
-    auto grid = VisualPolarGrid::make(vpSize.x / eyes, vpSize.y, 0.24);
+// The mapping of one eye as the pass builds it (rho_f: the warp's foveaFraction, default 0.24).
+VisualPolarMapping mappingOf(glm::uvec2 vpSize, uint32_t eyes, glm::uvec2 eyeSize, glm::vec2 gaze,
+                             double foveaFraction = 0.24) {
+    auto grid = VisualPolarGrid::make(vpSize.x / eyes, vpSize.y, foveaFraction);
     return VisualPolarMapping::make(grid, glm::dvec2(eyeSize), glm::dvec2(gaze));
 }
 
@@ -307,6 +311,45 @@ TEST_F(VisualPolarPassTest, UnwarpMatchesCpuReference) {
     }
     // float vs double positions: a texel boundary can move by ~1e-5 texel; noise jumps there.
     EXPECT_LE(off, got.size() / 500) << "worst " << worst;
+}
+
+// Every level count with mips against the CPU reference, with a narrow fovea (rho_f 0.1, reduction
+// 0.5) whose pixels read phi levels 1 and 2 but not 3. unwarp_lookup.comp writes the mip
+// dispatches' group counts (none for a level the mapping never reads) and the lookup rebuild's
+// (none when the key is unchanged): the second frame, which rebuilds nothing, shows a level wrongly
+// skipped or a wrong offset into those counts.
+TEST_F(VisualPolarPassTest, UnwarpMatchesCpuReferenceAtEveryLevelCount) {
+    const uint32_t w = 96, h = 96;
+    const glm::vec2 gaze(0.45f, 0.55f);
+    auto cam = camera(w, h, false, gaze);
+    for (uint32_t levels = 2; levels <= 4; ++levels) {
+        VpRig rig(ctx(), w, h, R"({ "blur": false, "levels": )" + std::to_string(levels) + " }",
+                  R"({ "foveaFraction": 0.1, "reduction": 0.5 })");
+        glm::uvec2 vs = rig.vpSize();
+        auto m = mappingOf(vs, 1, {w, h}, gaze, 0.1);
+        // The fovea's level (unwarpReference): log2 of H rows over its circumference.
+        const double fovea =
+            std::log2(m.grid.height / (2 * std::numbers::pi * m.radius(m.grid.foveaFraction)));
+        ASSERT_GT(fovea, 1.0) << "the fovea must read phi levels 1 and 2";
+        ASSERT_LT(fovea, 2.0) << "level 3 must be one the mapping never reads (no dispatch)";
+        std::mt19937 rng(7 + levels);
+        std::uniform_real_distribution<double> u(0, 1);
+        Image noise = sampledVp(m, vs, [&](glm::dvec2, uint32_t, uint32_t) {
+            return glm::dvec4(u(rng), u(rng), u(rng), 1.0);
+        });
+        rig.unwarp(cam, noise);
+        Image got = rig.unwarp(cam, noise);
+        Image want = unwarpReference(m, vs, noise, {w, h}, levels);
+        size_t off = 0;
+        double worst = 0;
+        for (size_t i = 0; i < got.size(); ++i) {
+            double e = std::abs(got[i] - want[i]);
+            worst = std::max(worst, e);
+            off += e > 1e-3;
+        }
+        // As UnwarpMatchesCpuReference: texel boundaries moved by float rounding.
+        EXPECT_LE(off, got.size() / 500) << "levels " << levels << ", worst " << worst;
+    }
 }
 
 // Blur: constant preserved, fovea identical to the unblurred mapping, periphery smoothed.
