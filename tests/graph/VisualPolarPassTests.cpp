@@ -19,6 +19,7 @@
 #include "core/graph/GraphDesc.h"
 #include "core/graph/PassRegistry.h"
 #include "core/graph/RenderGraph.h"
+#include "core/sampling/BlockGrid.h"
 #include "core/sampling/VisualPolar.h"
 #include "core/scene/BuiltinScenes.h"
 #include "core/scene/Camera.h"
@@ -166,7 +167,13 @@ Image unwarpReference(const VisualPolarMapping& m, glm::uvec2 vpSize, const Imag
             double rpp = rt.x < g.foveaFraction
                              ? g.height / (2 * std::numbers::pi * rFovea)
                              : g.height / (2 * std::numbers::pi * glm::length(p - m.gaze));
-            double L = std::clamp(std::log2(std::max(rpp, 1.0)), 0.0, double(levels - 1));
+            double L = std::log2(std::max(rpp, 1.0));
+            if (g.stairBlock > 0) {  // unwarp.comp vpStairLevelShift: rows over the triangle's
+                uint32_t c = uint32_t(std::clamp(int(rt.x * g.width), 0, int(g.width) - 1));
+                double triangle = g.height * std::min((c + 0.5) / g.width / g.foveaFraction, 1.0);
+                L += std::log2(std::max(g.rows(c) / triangle, 1.0));
+            }
+            L = std::clamp(L, 0.0, double(levels - 1));
             uint32_t l0 = uint32_t(L), l1 = std::min(l0 + 1, levels - 1);
             for (int c = 0; c < 4; ++c) {
                 auto fetch = [&](uint32_t i, uint32_t j, uint32_t level) {
@@ -311,6 +318,43 @@ TEST_F(VisualPolarPassTest, UnwarpMatchesCpuReference) {
     }
     // float vs double positions: a texel boundary can move by ~1e-5 texel; noise jumps there.
     EXPECT_LE(off, got.size() / 500) << "worst " << worst;
+}
+
+// P5 §3.3's staircase (frame 0: block offset 9): inside a step a column has more phi rows than
+// the triangle, so Unwarp raises the mip level there (vpStairLevelShift) and builds every level.
+// Against the CPU reference with the staircase's heights and level; the control (the triangle's
+// level on the staircase's image) must differ near the gaze, or the test would not see the shift.
+TEST_F(VisualPolarPassTest, UnwarpMatchesCpuReferenceWithTheStaircase) {
+    const uint32_t w = 256, h = 192;
+    const glm::vec2 gaze(0.5f, 0.5f);
+    auto cam = camera(w, h, false, gaze);
+    VpRig rig(ctx(), w, h, R"({ "blur": false, "levels": 4 })", R"({ "staircase": true })");
+    glm::uvec2 vs = rig.vpSize();
+    auto m = mappingOf(vs, 1, {w, h}, gaze);
+    m.grid.stairBlock = uint32_t(sampling::kBlockGridSize);
+    m.grid.stairPhase = uint32_t(sampling::blockGridOffset(0)[0]);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(0, 1);
+    Image noise = sampledVp(m, vs, [&](glm::dvec2, uint32_t, uint32_t) {
+        return glm::dvec4(u(rng), u(rng), u(rng), 1.0);
+    });
+    Image got = rig.unwarp(cam, noise);
+    Image want = unwarpReference(m, vs, noise, {w, h}, 4);
+    size_t off = 0, offControl = 0;
+    double worst = 0;
+    {
+        // The control: level 0 everywhere (at 61 % the triangle's fovea level is 0.18, so this
+        // is about what Unwarp read before the shift).
+        Image control = unwarpReference(m, vs, noise, {w, h}, 1);
+        for (size_t i = 0; i < got.size(); ++i) offControl += std::abs(got[i] - control[i]) > 1e-3;
+    }
+    for (size_t i = 0; i < got.size(); ++i) {
+        double e = std::abs(got[i] - want[i]);
+        worst = std::max(worst, e);
+        off += e > 1e-3;
+    }
+    EXPECT_LE(off, got.size() / 500) << "worst " << worst;
+    EXPECT_GT(offControl, size_t(100)) << "the staircase's level shift must show near the gaze";
 }
 
 // Every level count with mips against the CPU reference, with a narrow fovea (rho_f 0.1, reduction
