@@ -4,9 +4,6 @@
 // over the fovea's circumference 2 pi r_f (beyond it n / 2 pi r <= H / 2 pi r_f); it reads
 // floor(L) and floor(L) + 1. The smallest r_f of the eyes bounds both.
 uint highestLevelRead(uint eyes) {
-    // P5 §3.3's staircase raises the level inside its steps (unwarp.comp vpStairLevelShift), up
-    // to the highest level there is.
-    if (vp.stair.x != 0u) return 3u;
     float rFovea = 1e30;
     for (uint e = 0u; e < eyes; ++e) {
         VisualPolarMap me = vpMapOfEye(e);

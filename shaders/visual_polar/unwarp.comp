@@ -30,17 +30,6 @@ layout(push_constant) uniform Params {
     uint toResult;  // 1: write `result` (no blur follows), 0: `unwarped` for the blur
 } pc;
 
-// P5 §3.3's staircase: inside a step a column holds more phi rows than the triangle the lookup's
-// level is computed for (continuous height H rho / rho_f), so that level would read a mip too
-// fine and alias in phi near the gaze. The level rises by log2 of the ratio at the nearest
-// column (0 beyond the fovea, where both are H; the ratio is >= 1 up to rounding).
-float vpStairLevelShift(VisualPolarMap m, float rho) {
-    uint c = uint(clamp(int(rho * float(m.width)), 0, int(m.width) - 1));
-    float rhoC = (float(c) + 0.5) / float(m.width);
-    float triangle = float(m.height) * min(rhoC / m.foveaFraction, 1.0);  // foveaFraction >= 0.1
-    return log2(max(float(vpRows(m, c)) / max(triangle, 1e-3), 1.0));
-}
-
 vec4 loadLevel(uint level, ivec2 p) {
     if (level == 0u) return texelFetch(color, p, 0);
     if (level == 1u) return imageLoad(mip1, p);
@@ -83,7 +72,6 @@ void main() {
     vec4 lk = imageLoad(lookup, p);
     vec2 rt = lk.xy;
     float L = lk.z;
-    if (m.stairBlock != 0u) L = min(L + vpStairLevelShift(m, rt.x), float(max(pc.levels, 1u) - 1u));
     uint l0 = uint(floor(L));
     uint l1 = min(l0 + 1u, max(pc.levels, 1u) - 1u);
     vec4 c = bilinear(m, eye, rt, l0);

@@ -167,13 +167,7 @@ Image unwarpReference(const VisualPolarMapping& m, glm::uvec2 vpSize, const Imag
             double rpp = rt.x < g.foveaFraction
                              ? g.height / (2 * std::numbers::pi * rFovea)
                              : g.height / (2 * std::numbers::pi * glm::length(p - m.gaze));
-            double L = std::log2(std::max(rpp, 1.0));
-            if (g.stairBlock > 0) {  // unwarp.comp vpStairLevelShift: rows over the triangle's
-                uint32_t c = uint32_t(std::clamp(int(rt.x * g.width), 0, int(g.width) - 1));
-                double triangle = g.height * std::min((c + 0.5) / g.width / g.foveaFraction, 1.0);
-                L += std::log2(std::max(g.rows(c) / triangle, 1.0));
-            }
-            L = std::clamp(L, 0.0, double(levels - 1));
+            double L = std::clamp(std::log2(std::max(rpp, 1.0)), 0.0, double(levels - 1));
             uint32_t l0 = uint32_t(L), l1 = std::min(l0 + 1, levels - 1);
             for (int c = 0; c < 4; ++c) {
                 auto fetch = [&](uint32_t i, uint32_t j, uint32_t level) {
@@ -320,11 +314,12 @@ TEST_F(VisualPolarPassTest, UnwarpMatchesCpuReference) {
     EXPECT_LE(off, got.size() / 500) << "worst " << worst;
 }
 
-// P5 §3.3's staircase (frame 0: block offset 9): inside a step a column has more phi rows than
-// the triangle, so Unwarp raises the mip level there (vpStairLevelShift) and builds every level.
-// Against the CPU reference with the staircase's heights and level; the control (the triangle's
-// level on the staircase's image) must differ near the gaze, or the test would not see the shift.
-TEST_F(VisualPolarPassTest, UnwarpMatchesCpuReferenceWithTheStaircase) {
+// P5 §3.3's staircase (frame 0: block offset 9): Unwarp reads every column at this frame's
+// staircase height (and the phi mips are built with them). Against the CPU reference with the
+// staircase's heights; the control (the triangle's heights on the same image) must differ, or
+// the test would not see a wrong height. (Raising the mip level inside a step by the ratio of
+// rows, against phi aliasing, measured worse and is not done: docs/visual-polar.md.)
+TEST_F(VisualPolarPassTest, UnwarpReadsTheStaircaseHeights) {
     const uint32_t w = 256, h = 192;
     const glm::vec2 gaze(0.5f, 0.5f);
     auto cam = camera(w, h, false, gaze);
@@ -340,21 +335,19 @@ TEST_F(VisualPolarPassTest, UnwarpMatchesCpuReferenceWithTheStaircase) {
     });
     Image got = rig.unwarp(cam, noise);
     Image want = unwarpReference(m, vs, noise, {w, h}, 4);
+    auto triangle = m;
+    triangle.grid.stairBlock = 0;
+    Image control = unwarpReference(triangle, vs, noise, {w, h}, 4);
     size_t off = 0, offControl = 0;
     double worst = 0;
-    {
-        // The control: level 0 everywhere (at 61 % the triangle's fovea level is 0.18, so this
-        // is about what Unwarp read before the shift).
-        Image control = unwarpReference(m, vs, noise, {w, h}, 1);
-        for (size_t i = 0; i < got.size(); ++i) offControl += std::abs(got[i] - control[i]) > 1e-3;
-    }
     for (size_t i = 0; i < got.size(); ++i) {
         double e = std::abs(got[i] - want[i]);
         worst = std::max(worst, e);
         off += e > 1e-3;
+        offControl += std::abs(got[i] - control[i]) > 1e-3;
     }
     EXPECT_LE(off, got.size() / 500) << "worst " << worst;
-    EXPECT_GT(offControl, size_t(100)) << "the staircase's level shift must show near the gaze";
+    EXPECT_GT(offControl, size_t(1000)) << "the staircase's heights must show around the gaze";
 }
 
 // Every level count with mips against the CPU reference, with a narrow fovea (rho_f 0.1, reduction
