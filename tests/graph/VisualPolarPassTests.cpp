@@ -14,6 +14,7 @@
 #include <random>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "core/graph/GraphDesc.h"
@@ -134,6 +135,27 @@ Image sampledVp(const VisualPolarMapping& m, glm::uvec2 vpSize, Fn&& fn) {
             for (int c = 0; c < 4; ++c) img[(size_t(j) * vpSize.x + i) * 4 + c] = float(v[c]);
         }
     return img;
+}
+
+// A VP image of uniform noise in rgb (alpha 1) at every valid texel.
+Image noiseVp(const VisualPolarMapping& m, glm::uvec2 vpSize, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    return sampledVp(m, vpSize, [&](glm::dvec2, uint32_t, uint32_t) {
+        return glm::dvec4(u(rng), u(rng), u(rng), 1.0);
+    });
+}
+
+// How many values of `got` differ from `want` by more than 1e-3, and the largest difference.
+std::pair<size_t, double> countOff(const Image& got, const Image& want) {
+    size_t off = 0;
+    double worst = 0;
+    for (size_t i = 0; i < got.size(); ++i) {
+        double e = std::abs(got[i] - want[i]);
+        worst = std::max(worst, e);
+        off += e > 1e-3;
+    }
+    return {off, worst};
 }
 
 // CPU reference of unwarp.comp without the blur: phi-only mips (pair averages, wrapped), level
@@ -296,20 +318,9 @@ TEST_F(VisualPolarPassTest, UnwarpMatchesCpuReference) {
     auto cam = camera(w, h, false, gaze);
     glm::uvec2 vs = rig.vpSize();
     auto m = mappingOf(vs, 1, {w, h}, gaze);
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<double> u(0, 1);
-    Image noise = sampledVp(m, vs, [&](glm::dvec2, uint32_t, uint32_t) {
-        return glm::dvec4(u(rng), u(rng), u(rng), 1.0);
-    });
+    Image noise = noiseVp(m, vs, 5);
     Image got = rig.unwarp(cam, noise);
-    Image want = unwarpReference(m, vs, noise, {w, h}, 4);
-    size_t off = 0;
-    double worst = 0;
-    for (size_t i = 0; i < got.size(); ++i) {
-        double e = std::abs(got[i] - want[i]);
-        worst = std::max(worst, e);
-        off += e > 1e-3;
-    }
+    auto [off, worst] = countOff(got, unwarpReference(m, vs, noise, {w, h}, 4));
     // float vs double positions: a texel boundary can move by ~1e-5 texel; noise jumps there.
     EXPECT_LE(off, got.size() / 500) << "worst " << worst;
 }
@@ -328,24 +339,12 @@ TEST_F(VisualPolarPassTest, UnwarpReadsTheStaircaseHeights) {
     auto m = mappingOf(vs, 1, {w, h}, gaze);
     m.grid.stairBlock = uint32_t(sampling::kBlockGridSize);
     m.grid.stairPhase = uint32_t(sampling::blockGridOffset(0)[0]);
-    std::mt19937 rng(11);
-    std::uniform_real_distribution<double> u(0, 1);
-    Image noise = sampledVp(m, vs, [&](glm::dvec2, uint32_t, uint32_t) {
-        return glm::dvec4(u(rng), u(rng), u(rng), 1.0);
-    });
+    Image noise = noiseVp(m, vs, 11);
     Image got = rig.unwarp(cam, noise);
-    Image want = unwarpReference(m, vs, noise, {w, h}, 4);
+    auto [off, worst] = countOff(got, unwarpReference(m, vs, noise, {w, h}, 4));
     auto triangle = m;
     triangle.grid.stairBlock = 0;
-    Image control = unwarpReference(triangle, vs, noise, {w, h}, 4);
-    size_t off = 0, offControl = 0;
-    double worst = 0;
-    for (size_t i = 0; i < got.size(); ++i) {
-        double e = std::abs(got[i] - want[i]);
-        worst = std::max(worst, e);
-        off += e > 1e-3;
-        offControl += std::abs(got[i] - control[i]) > 1e-3;
-    }
+    size_t offControl = countOff(got, unwarpReference(triangle, vs, noise, {w, h}, 4)).first;
     EXPECT_LE(off, got.size() / 500) << "worst " << worst;
     EXPECT_GT(offControl, size_t(1000)) << "the staircase's heights must show around the gaze";
 }
@@ -369,21 +368,10 @@ TEST_F(VisualPolarPassTest, UnwarpMatchesCpuReferenceAtEveryLevelCount) {
             std::log2(m.grid.height / (2 * std::numbers::pi * m.radius(m.grid.foveaFraction)));
         ASSERT_GT(fovea, 1.0) << "the fovea must read phi levels 1 and 2";
         ASSERT_LT(fovea, 2.0) << "level 3 must be one the mapping never reads (no dispatch)";
-        std::mt19937 rng(7 + levels);
-        std::uniform_real_distribution<double> u(0, 1);
-        Image noise = sampledVp(m, vs, [&](glm::dvec2, uint32_t, uint32_t) {
-            return glm::dvec4(u(rng), u(rng), u(rng), 1.0);
-        });
+        Image noise = noiseVp(m, vs, 7 + levels);
         rig.unwarp(cam, noise);
         Image got = rig.unwarp(cam, noise);
-        Image want = unwarpReference(m, vs, noise, {w, h}, levels);
-        size_t off = 0;
-        double worst = 0;
-        for (size_t i = 0; i < got.size(); ++i) {
-            double e = std::abs(got[i] - want[i]);
-            worst = std::max(worst, e);
-            off += e > 1e-3;
-        }
+        auto [off, worst] = countOff(got, unwarpReference(m, vs, noise, {w, h}, levels));
         // As UnwarpMatchesCpuReference: texel boundaries moved by float rounding.
         EXPECT_LE(off, got.size() / 500) << "levels " << levels << ", worst " << worst;
     }
