@@ -19,10 +19,6 @@ constexpr float kMaxCount = 255.0f;   // P2 §3.2: the count is only needed whil
 BMFRPass::BMFRPass() = default;
 BMFRPass::~BMFRPass() = default;
 
-std::array<int, 2> BMFRPass::blockOffset(uint64_t frame) {
-    return sampling::blockGridOffset(frame);  // P2 §6.1 (shared with VisualPolarWarp)
-}
-
 void BMFRPass::params(graph::ParamVisitor& v) {
     v.add("features", mFeatures, "default",
           "feature set: default = [1, n.xyz, w.xyz, w.xyz^2] (P2 Eq. 8); albedo = default + "
@@ -219,7 +215,9 @@ void BMFRPass::execute(graph::ExecuteContext& ctx) {
     stamp(1);
 
     // (II) fit: one workgroup of 256 threads per block.
-    const auto offset = mOffsets ? blockOffset(ctx.frame().index) : std::array<int, 2>{0, 0};
+    // P2 §6.1's moving block grid (core/sampling/BlockGrid.h, shared with VisualPolarWarp).
+    const auto offset =
+        mOffsets ? sampling::blockGridOffset(ctx.frame().index) : std::array<int, 2>{0, 0};
     const uint64_t seed = ctx.frame().seed;
     const uint32_t frameSeed = uint32_t(seed) ^ (uint32_t(seed >> 32) * 0x9e3779b9u) ^
                                (uint32_t(ctx.frame().index) * 0x85ebca6bu);

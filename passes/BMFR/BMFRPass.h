@@ -31,9 +31,6 @@ public:
     std::string variant() const override { return mFeatures; }
     nlohmann::json statistics(const graph::StatisticsContext& ctx) const override;
 
-    // The 16 block offsets (P2 §6.1), in pixels, each component in [0, 32).
-    static constexpr int kOffsetCount = 16;  // sampling::kBlockGridOffsetCount
-    static std::array<int, 2> blockOffset(uint64_t frame);
     // Blocks per row for an image `width` wide (one more than needed without offsets, so that
     // any offset still covers the image).
     static int blocksAcross(uint32_t extent) { return int((extent + 31u) / 32u) + 1; }

@@ -96,8 +96,8 @@ void SVGFPass::reflect(graph::Reflection& r) const {
         .doc(
             "VisualPolarWarp `vp` block (with a Visual-Polar `color` and GBuffer VP `motion`): "
             "history taps, 3x3 fallback, spatial-variance and a-trous taps at each column's own "
-            "phi height, wrapped on phi (P5 §3.3; the depth gradient stays in texel addressing); "
-            "open: screen addressing");
+            "phi height, wrapped on phi, the depth gradient too (P5 §3.3); open: screen "
+            "addressing");
 
     const auto rgba32 = vk::Format::eR32G32B32A32Sfloat;
     r.output("filtered", rgba32).sameAs("color").doc("final colour: last level remodulated, a = 1");

@@ -38,8 +38,10 @@ void TAAPass::reflect(graph::Reflection& r) const {
         .optional()
         .doc(
             "VisualPolarWarp `vp` block (with a Visual-Polar `color` and GBuffer VP `motion`): 3x3 "
-            "neighbours and bilinear history taps wrap on phi at each column's own phi height "
-            "(P5 §3.3; historyFilter is then bilinear); open: screen addressing");
+            "neighbours and the history taps (bilinear or Catmull-Rom) wrap on phi at each "
+            "column's "
+            "own phi height, the previous frame's for the history (P5 §3.3); open: screen "
+            "addressing");
     r.output("result", vk::Format::eR32G32B32A32Sfloat)
         .sameAs("color")
         .history(1)

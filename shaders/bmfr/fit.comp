@@ -69,7 +69,8 @@ void reduce(int first, int end, int op) {
 void main() {
     uint t = gl_LocalInvocationID.x;
     int block = int(gl_WorkGroupID.x);
-    ivec2 origin = ivec2(block % pc.blocksX, block / pc.blocksX) * BMFR_BLOCK - bmfrBlockOffset(pc.offset, pc.useVp);
+    ivec2 origin = ivec2(block % pc.blocksX, block / pc.blocksX) * BMFR_BLOCK -
+                   bmfrBlockOffset(pc.offset, pc.useVp);
 
     float A[BMFR_ROWS_PER_THREAD][BMFR_COLS];
     bool valid[BMFR_ROWS_PER_THREAD];

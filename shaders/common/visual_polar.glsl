@@ -108,6 +108,12 @@ vec2 vpToVisualPolar(VisualPolarMap m, vec2 p) {
     return vec2(vpRhoOfEccentricity(m, r * kVpMaxDegrees / m.dMax), t);  // dMax >= 0.5
 }
 
+// The staircase phase of eye `eye`: its columns start at eye W in the side-by-side image, whose
+// block grid is shifted by `offset` (P2 §6.1). block 0 = no staircase.
+uint vpStairPhaseOf(uint block, uint offset, uint eye, uint width) {
+    return block == 0u ? 0u : (offset + eye * width) % block;
+}
+
 // The same map with the previous frame's phi heights: history images were traced with them (the
 // staircase moves with the block offsets every frame). Positions (rho, t) do not change.
 VisualPolarMap vpPrevious(VisualPolarMap m) {
@@ -185,10 +191,6 @@ layout(std430) VISUAL_POLAR_ACCESS buffer VisualPolarParams {
                    // z the previous frame's (both < B)
 } vp;
 
-uint vpStairPhase(uint offset, uint eye, uint width) {
-    return vp.stair.x == 0u ? 0u : (offset + eye * width) % vp.stair.x;
-}
-
 VisualPolarMap vpMapOfEye(uint eye) {
     VisualPolarMap m;
     m.screen = max(vp.fovea.zw, vec2(1.0));
@@ -199,8 +201,8 @@ VisualPolarMap vpMapOfEye(uint eye) {
     m.foveaFraction = clamp(vp.fovea.x, 0.1, 1.0);  // kVisualPolarMinFoveaFraction
     m.foveaDegrees = max(vp.fovea.y, 1e-3);
     m.stairBlock = vp.stair.x;
-    m.stairPhase = vpStairPhase(vp.stair.y, min(eye, 1u), m.width);
-    m.stairPrevPhase = vpStairPhase(vp.stair.z, min(eye, 1u), m.width);
+    m.stairPhase = vpStairPhaseOf(vp.stair.x, vp.stair.y, min(eye, 1u), m.width);
+    m.stairPrevPhase = vpStairPhaseOf(vp.stair.x, vp.stair.z, min(eye, 1u), m.width);
     return m;
 }
 

@@ -29,11 +29,9 @@ VisualPolarMap makeMap(uint eye, uvec2 vpSize, uint eyes) {
     m.height = max(vpSize.y, 1u);
     m.foveaFraction = pc.foveaFraction;
     m.foveaDegrees = pc.foveaDegrees;
-    // Eye e's columns start at e W in the side-by-side image, where BMFR's blocks run on.
     m.stairBlock = pc.stairBlock;
-    m.stairPhase = pc.stairBlock == 0u ? 0u : (pc.stairOffset + eye * m.width) % pc.stairBlock;
-    m.stairPrevPhase =
-        pc.stairBlock == 0u ? 0u : (pc.stairPrevOffset + eye * m.width) % pc.stairBlock;
+    m.stairPhase = vpStairPhaseOf(pc.stairBlock, pc.stairOffset, eye, m.width);
+    m.stairPrevPhase = vpStairPhaseOf(pc.stairBlock, pc.stairPrevOffset, eye, m.width);
     return vpWithGaze(m, clamp(camera_info.eyes[eye].gaze.xy, 0.0, 1.0) * m.screen);  // clamped
 }
 
