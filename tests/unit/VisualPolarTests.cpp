@@ -242,11 +242,13 @@ TEST(VisualPolar, StaircaseHasOneHeightPerBlockColumn) {
             g.stairPhase = uint32_t(fovea::sampling::blockGridOffset(k)[0]);
             for (uint32_t i = 0; i < w; ++i) {
                 ASSERT_GE(g.rows(i), triangle.rows(i)) << i;
-                if ((i + g.stairPhase) % g.stairBlock != 0 && i > 0)
+                if ((i + g.stairPhase) % g.stairBlock != 0 && i > 0) {
                     ASSERT_EQ(g.rows(i), g.rows(i - 1)) << "offset " << k << " column " << i;
+                }
                 // The last column of a block column keeps its own height.
-                if ((i + 1 + g.stairPhase) % g.stairBlock == 0 || i + 1 == w)
+                if ((i + 1 + g.stairPhase) % g.stairBlock == 0 || i + 1 == w) {
                     ASSERT_EQ(g.rows(i), triangle.rows(i)) << i;
+                }
             }
             least = std::min(least, g.validTexels());
             most = std::max(most, g.validTexels());
