@@ -69,8 +69,10 @@ uint32_t VisualPolarGrid::rows(uint32_t column) const {
             std::min(column + (stairBlock - 1) - (column + stairPhase) % stairBlock, width - 1);
     double rho = (column + 0.5) / width;
     if (rho >= foveaFraction) return height;
-    // ceil(H rho / rho_f), at least 1 (column 0 of 853x960: 3 rows).
-    return std::clamp(uint32_t(std::ceil(height * rho / foveaFraction)), 1u, height);
+    // ceil(H rho / rho_f), at least 1 (column 0 of 853x960: 3 rows); an integer up to rounding
+    // stays that integer on both twins (kVisualPolarRowsSlack).
+    double n = height * rho / foveaFraction;  // foveaFraction >= 0.1
+    return std::clamp(uint32_t(std::ceil(n * (1.0 - kVisualPolarRowsSlack))), 1u, height);
 }
 
 uint64_t VisualPolarGrid::validTexels() const {

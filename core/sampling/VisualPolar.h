@@ -30,6 +30,13 @@ inline constexpr double kVisualPolarFoveaFraction = 0.24;
 // acuity, where Eq. 2's two branches differ by 0.26 % (a small step down at 5.79 degrees): the
 // mapping then only uses the monotone tail of Eq. 2.
 inline constexpr double kVisualPolarMinFoveaFraction = 0.1;
+// n(i) = ceil(H rho / rho_f) counts a value up to this much (relative) above an integer as that
+// integer, here and in visual_polar.glsl vpRows: H rho / rho_f is often an exact integer (every
+// fovea column when W = H and rho_f = 0.1) and the GPU's float rounding lifted some by an ulp, a
+// whole row more after the ceil (column 4 of 70x70: 46 rows on the GPU, 45 here). Float is at
+// most ~6 ulps (7e-7) off; 2e-6 is ~3x that. A value genuinely that close above an integer loses
+// its extra row on both twins (P5's 853x959 grid: column 112, x = 527.0003, 527 rows).
+inline constexpr double kVisualPolarRowsSlack = 2e-6;
 // Bytes of the `vp` parameter block (visual_polar.glsl VisualPolarParams, std430): grid, fovea,
 // two eyes, staircase.
 inline constexpr uint64_t kVisualPolarParamsBytes = 80;

@@ -60,6 +60,14 @@ float vpAcuityInverse(float u) {
     return e;
 }
 
+// How far (relative) above an integer H rho / rho_f may come out and still count as that integer
+// in vpRows (VisualPolar.h kVisualPolarRowsSlack, the C++ twin's). The value is often an exact
+// integer (W = H and rho_f = 0.1 make it one in every fovea column); float rounding lifted some by
+// an ulp and the ceil then by a whole row the double twin did not have (column 4 of 70x70: 46
+// rows here, 45 there), so Unwarp read a 46-row column that held 45. Float is at most ~6 ulps
+// (7e-7) off with Vulkan's 2.5-ulp division; 2e-6 is ~3x that.
+const float kVpRowsSlack = 2e-6;
+
 // n(i): the phi height of column i, in [1, H]. With the staircase, the height of the last column
 // of i's block column (the largest of the block: the fovea keeps at least its density).
 uint vpRows(VisualPolarMap m, uint column) {
@@ -68,7 +76,8 @@ uint vpRows(VisualPolarMap m, uint column) {
                      m.width - 1u);
     float rho = (float(column) + 0.5) / float(m.width);
     if (rho >= m.foveaFraction) return m.height;
-    return clamp(uint(ceil(float(m.height) * rho / m.foveaFraction)), 1u, m.height);
+    float n = float(m.height) * rho / m.foveaFraction;  // foveaFraction >= 0.1
+    return clamp(uint(ceil(n * (1.0 - kVpRowsSlack))), 1u, m.height);
 }
 
 float vpEccentricity(VisualPolarMap m, float rho) {

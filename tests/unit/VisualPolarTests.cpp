@@ -154,6 +154,20 @@ TEST(VisualPolar, SampleBudget) {
     }
 }
 
+// n(i) = ceil(H rho / rho_f) with kVisualPolarRowsSlack: an exact integer stays that integer (a
+// 70x70 grid at rho_f 0.1 has one in every fovea column: 10 i + 5; the shader's float had given
+// column 4 46 rows), and so does a value less than the slack above one (column 112 of 1280x1440's
+// 853x959 grid: 527.0003), on both twins alike.
+TEST(VisualPolar, RowsOfAnIntegerHeightAreThatInteger) {
+    auto square = VisualPolarGrid::make(70, 70, 0.1);
+    for (uint32_t i = 0; i < 7; ++i) EXPECT_EQ(square.rows(i), 10 * i + 5) << i;
+    EXPECT_EQ(square.rows(7), 70u);
+    auto p5 = VisualPolarGrid::make(853, 959, kVisualPolarFoveaFraction);
+    EXPECT_NEAR(959 * (112.5 / 853) / kVisualPolarFoveaFraction, 527.0003, 1e-4);
+    EXPECT_EQ(p5.rows(112), 527u);
+    EXPECT_EQ(p5.rows(113), 532u);  // ceil(531.69)
+}
+
 // Screen-space density of the VP grid: count texel centres per annulus, divide by its area, and
 // compare with the model: uniform W H 80^2 rho_f / (2 pi dMax^2 e_f^2) in the fovea, and
 // W H 80^2 f'(e) / (2 pi e dMax^2) (prop. to m(e), Eq. 2's derivative) beyond.
@@ -242,11 +256,13 @@ TEST(VisualPolar, StaircaseHasOneHeightPerBlockColumn) {
             g.stairPhase = uint32_t(fovea::sampling::blockGridOffset(k)[0]);
             for (uint32_t i = 0; i < w; ++i) {
                 ASSERT_GE(g.rows(i), triangle.rows(i)) << i;
-                if ((i + g.stairPhase) % g.stairBlock != 0 && i > 0)
+                if ((i + g.stairPhase) % g.stairBlock != 0 && i > 0) {
                     ASSERT_EQ(g.rows(i), g.rows(i - 1)) << "offset " << k << " column " << i;
+                }
                 // The last column of a block column keeps its own height.
-                if ((i + 1 + g.stairPhase) % g.stairBlock == 0 || i + 1 == w)
+                if ((i + 1 + g.stairPhase) % g.stairBlock == 0 || i + 1 == w) {
                     ASSERT_EQ(g.rows(i), triangle.rows(i)) << i;
+                }
             }
             least = std::min(least, g.validTexels());
             most = std::max(most, g.validTexels());
