@@ -72,13 +72,13 @@ bool numbersOf(const std::vector<const json*>& values, std::vector<double>& out)
 }
 
 // Applies `reduce` to every number of the seeds' objects, key by key (arrays index by index);
-// what is equal in every seed and every describing key is kept as the first seed has it.
+// describing keys, strings and booleans are kept as the first seed has them.
 template <class Reduce>
 json combine(const std::vector<const json*>& values, const std::string& key, Reduce reduce) {
     const json& first = *values.front();
-    const bool allEqual =
-        std::all_of(values.begin(), values.end(), [&](const json* v) { return *v == first; });
-    if (describesFigure(key) || (allEqual && !first.is_number() && !first.is_null())) return first;
+    // Strings and booleans are no figures (and an object equal in every seed still has a spread
+    // of 0, so it is reduced like the others).
+    if (describesFigure(key) || first.is_string() || first.is_boolean()) return first;
     if (first.is_object()) {
         json out = json::object();
         for (const auto& [k, _] : first.items()) {
