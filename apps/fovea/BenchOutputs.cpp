@@ -135,9 +135,14 @@ void errorTable(std::ostream& t, const json& header, const std::vector<BenchResu
       << (layers.empty() ? "" : "---:|---:|---:|") << "\n";
     auto row = [&](const std::string& name, const json& e, const json* fl) {
         const auto [worstFrame, worstPercent] = worstOf(e);
+        // Several seeds: the worst frame of all seeds, and which seed it was.
+        const std::string seed =
+            e.contains("worst") && e["worst"].contains("seed")
+                ? " (seed " + std::to_string(e["worst"]["seed"].get<uint64_t>()) + ")"
+                : "";
         t << "| " << md(name) << " | " << number(meanOf(e, "rmse_percent"), "%.4f") << " | "
           << (fl ? number(correctedPercent(e, fl), "%.4f") : std::string("—")) << " | "
-          << worstFrame << " | " << number(worstPercent, "%.4f");
+          << worstFrame << seed << " | " << number(worstPercent, "%.4f");
         if (!layers.empty())
             for (double v : layerRmsePercent(e)) t << " | " << number(v, "%.4f");
         t << " |\n";
