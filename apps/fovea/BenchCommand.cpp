@@ -200,7 +200,7 @@ SeedRun runBenchSeed(const BenchSpec& spec, const BenchGraph& g, uint64_t seed, 
             run.errors[i].add(f, image, g.label + " " + run.output + " frame " + std::to_string(f),
                               m.source.forFrame(f), m.source.fileFor(f).string(), camera);
             // The floor: the second reference against the first, on the same frame and camera
-            // (measured once per bench, with the first graph).
+            // (measured once per bench, with the first graph and seed).
             if (floors && m.second)
                 (*floors)[i].add(f, m.second->forFrame(f), m.second->fileFor(f).string(),
                                  m.source.forFrame(f), m.source.fileFor(f).string(), camera);

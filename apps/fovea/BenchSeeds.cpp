@@ -125,7 +125,8 @@ double figureOf(const json& mean, const Figure& f) {
     const json* v = nullptr;
     if (!f.list) {
         if (mean.contains(f.name)) v = &mean[f.name];
-    } else if (mean.contains(f.list) && mean[f.list].size() > f.index) {
+    } else if (mean.contains(f.list) && mean[f.list].size() > f.index &&
+               mean[f.list][f.index].contains("rmse")) {
         v = &mean[f.list][f.index]["rmse"];
     }
     return v && v->is_number() ? f.scale * v->get<double>() : std::nan("");
