@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -44,7 +45,9 @@ struct BenchSpec {
     bool stereo = false;
     bool sun = false;  // `sun`: --sun for every graph and the reference (glTF files without lights)
     uint32_t width = 0, height = 0, frames = 0, warmup = 1;
-    uint64_t seed = 1;
+    // Run seeds: `seed` (one) or `seeds` (several: every graph runs once per seed, the errors are
+    // means over the seeds with their standard error and paired differences, BenchSeeds.cpp).
+    std::vector<uint64_t> seeds = {1};
     std::string output;
     BenchReference reference;
     // The reference's noise floor: a second reference with another seed (file, directory or
@@ -84,7 +87,37 @@ struct BenchResult {
     std::vector<BenchTrack> against;  // one per BenchSpec::against, in order
     bool pareto = false;              // Pareto-optimal in (frame ms median, mean RMSE %)
     std::vector<BenchPass> passes;
+    // Several seeds only, every graph after the first: pairedDifference() against the first.
+    nlohmann::json difference;
 };
+
+// Several seeds (BenchSeeds.cpp, docs/bench.md "Several seeds").
+// The errors of one output over the seeds, from each seed's FrameErrors::json(): "mean" (the mean
+// over the seeds of each seed's mean; PSNR null when any is infinite), "standard_error" (same
+// keys: sample standard deviation over the seeds / sqrt(seeds)), "temporal_error" (mean over the
+// seeds) and "temporal_error_standard_error", "worst" (the worst frame of all seeds, with its
+// "seed") and "seeds" (each seed's FrameErrors::json() with its "seed").
+nlohmann::json combineSeedErrors(const std::vector<uint64_t>& seeds,
+                                 const std::vector<nlohmann::json>& perSeed);
+// The mean over the seeds of each figure (PSNR +inf when any is).
+image::ImageMetrics meanOverSeeds(const std::vector<image::ImageMetrics>& perSeed);
+// The paired difference of `graph` against `first` (both combineSeedErrors objects, same seeds):
+// {"against": label, "figures": {name: {"seeds": [graph - first per seed], "mean",
+// "standard_error", "significant": |mean| > 2 standard errors}}} for the figures of
+// seedFigureNames() that both have.
+nlohmann::json pairedDifference(const nlohmann::json& graph, const nlohmann::json& first,
+                                const std::string& firstLabel);
+// The figures compared over seeds, in table order: rmse, rmse_percent, the three bands
+// (rmse_0_5deg, ...) and the three layers (rmse_percent_fovea, ...), as in bench.csv.
+const std::vector<std::string>& seedFigureNames();
+// bench.csv's columns for several seeds (appended after the others) and one graph's values.
+std::string seedCsvHeader();
+std::string seedCsvRow(const BenchResult& r);
+// " ± <standard error of figure>" of a combineSeedErrors object; "" for one seed's errors.
+std::string standardErrorSuffix(const nlohmann::json& errors, const std::string& figure,
+                                const char* format);
+// bench.md's sections for several seeds: each seed's own errors and the paired differences.
+void seedTables(std::ostream& t, const std::vector<BenchResult>& results);
 
 class OutputFolder;
 

@@ -2,6 +2,7 @@
 // path and size, measures GPU time per frame and per pass (medians over the frames after the
 // warm-up) and the error of one output against a reference per frame, and writes tables and a
 // run-time-vs-error plot (docs/bench.md).
+#include <algorithm>
 #include <fstream>
 #include <iostream>
 
@@ -65,11 +66,12 @@ graph::GraphDesc loadBenchGraph(const BenchSpec& spec, const std::string& file,
 // The rendered reference uses another seed than the measured runs: with the same one its first
 // frames would repeat their samples, and its error against them would read too low. The second
 // reference of the noise floor uses a third seed.
-uint64_t referenceSeed(uint64_t seed) {
-    return seed + 1;
+// With several run seeds both follow the largest, so that neither equals any run seed.
+uint64_t referenceSeed(const std::vector<uint64_t>& seeds) {
+    return *std::max_element(seeds.begin(), seeds.end()) + 1;
 }
-uint64_t noiseFloorSeed(uint64_t seed) {
-    return seed + 2;
+uint64_t noiseFloorSeed(const std::vector<uint64_t>& seeds) {
+    return *std::max_element(seeds.begin(), seeds.end()) + 2;
 }
 
 // The reference of the measured frames: the bench's file, or rendered once into DIR/reference
@@ -141,35 +143,45 @@ std::optional<sampling::LayerRadii> layerRadii(const BenchSpec& spec) {
     return std::nullopt;
 }
 
-BenchResult runBenchGraph(const BenchSpec& spec, const BenchGraph& g, gpu::Context& ctx,
-                          std::vector<MeasuredReference>& references,
-                          const std::optional<sampling::LayerRadii>& layers,
-                          std::vector<FrameErrors>* floors, bool quiet) {
+// One run of one graph with one seed: its frame times, errors per reference and per-pass GPU
+// times over the measured frames.
+struct SeedRun {
+    std::string output;
+    std::vector<double> frameMs;
+    std::vector<FrameErrors> errors;  // one per reference
+    std::vector<BenchPass> passes;    // gpuMs unset: the samples are in passMs
+    std::vector<std::vector<double>> passMs;
+};
+
+SeedRun runBenchSeed(const BenchSpec& spec, const BenchGraph& g, uint64_t seed, gpu::Context& ctx,
+                     std::vector<MeasuredReference>& references,
+                     const std::optional<sampling::LayerRadii>& layers,
+                     std::vector<FrameErrors>* floors, bool quiet) {
     graph::GraphDesc desc = loadBenchGraph(spec, g.file, g.sets, g.pointer);
     RunScene scene(sceneOptions(spec), desc);
     uploadScene(ctx, scene, quiet);
-    GraphRunner runner(ctx, scene, desc, {spec.width, spec.height, spec.seed, true, {}});
-    BenchResult result;
-    result.graph = g;
+    GraphRunner runner(ctx, scene, desc, {spec.width, spec.height, seed, true, {}});
+    SeedRun run;
     const std::string pointer = g.output.empty() ? "/output" : g.pointer + "/output";
-    result.output = selectComparedOutput(runner, g.output.empty() ? spec.output : g.output,
-                                         spec.file + ": " + pointer);
+    run.output = selectComparedOutput(runner, g.output.empty() ? spec.output : g.output,
+                                      spec.file + ": " + pointer);
     for (auto& m : references) {
-        m.source.choose(result.output);
-        if (m.second) m.second->choose(result.output);
+        m.source.choose(run.output);
+        if (m.second) m.second->choose(run.output);
     }
-    std::vector<FrameErrors> errors(references.size());
-    for (auto& e : errors)
+    run.errors.assign(references.size(), FrameErrors());
+    for (auto& e : run.errors)
         if (layers) e.setLayers(*layers);
     if (floors) {
         floors->assign(references.size(), FrameErrors());
         for (auto& e : *floors)
             if (layers) e.setLayers(*layers);
     }
-    std::vector<double> frameMs;
     std::vector<size_t> warmSamples;  // per node: gpuMs entries of the warm-up
     std::vector<uint64_t> warmExecutions;
-    if (!quiet) std::cerr << "fovea: bench graph '" << g.label << "'\n";
+    if (!quiet)
+        std::cerr << "fovea: bench graph '" << g.label << "'"
+                  << (spec.seeds.size() > 1 ? ", seed " + std::to_string(seed) : "") << "\n";
     Progress progress(spec.frames, 0, quiet);
     for (uint32_t f = 0; f < spec.frames; ++f) {
         if (f == spec.warmup)
@@ -180,27 +192,21 @@ BenchResult runBenchGraph(const BenchSpec& spec, const BenchGraph& g, gpu::Conte
         graph::FrameTiming t = runner.runFrame();
         progress.update(f + 1);
         if (f < spec.warmup) continue;
-        frameMs.push_back(t.gpuMs);
-        const image::ImageRGBA image = runner.download(result.output);
+        run.frameMs.push_back(t.gpuMs);
+        const image::ImageRGBA image = runner.download(run.output);
         const auto* camera = &runner.graph().camera();
         for (size_t i = 0; i < references.size(); ++i) {
             MeasuredReference& m = references[i];
-            errors[i].add(f, image, g.label + " " + result.output + " frame " + std::to_string(f),
-                          m.source.forFrame(f), m.source.fileFor(f).string(), camera);
+            run.errors[i].add(f, image, g.label + " " + run.output + " frame " + std::to_string(f),
+                              m.source.forFrame(f), m.source.fileFor(f).string(), camera);
             // The floor: the second reference against the first, on the same frame and camera
-            // (measured once per bench, with the first graph).
+            // (measured once per bench, with the first graph and seed).
             if (floors && m.second)
                 (*floors)[i].add(f, m.second->forFrame(f), m.second->fileFor(f).string(),
                                  m.source.forFrame(f), m.source.fileFor(f).string(), camera);
         }
     }
     progress.finish();
-    result.frameMs = computeStats(frameMs);
-    result.meanErrors = errors[0].mean();
-    result.temporalError = errors[0].temporalError();
-    result.errors = errors[0].json();
-    for (size_t i = 1; i < references.size(); ++i)
-        result.against.push_back({references[i].label, errors[i].mean(), errors[i].json()});
     const auto& plan = runner.graph().plan();
     for (size_t n = 0; n < plan.nodes.size(); ++n) {
         const auto& rec = runner.graph().records()[n];
@@ -210,10 +216,65 @@ BenchResult runBenchGraph(const BenchSpec& spec, const BenchGraph& g, gpu::Conte
         p.status = graph::passStatusName(rec.status);
         // Records exist from build on; the guards only keep a graph without them from crashing.
         const size_t skip = n < warmSamples.size() ? warmSamples[n] : 0;
-        p.gpuMs = computeStats(
-            {rec.gpuMs.begin() + long(std::min(skip, rec.gpuMs.size())), rec.gpuMs.end()});
+        run.passMs.emplace_back(rec.gpuMs.begin() + long(std::min(skip, rec.gpuMs.size())),
+                                rec.gpuMs.end());
         p.executions = rec.executions - (n < warmExecutions.size() ? warmExecutions[n] : 0);
-        result.passes.push_back(p);
+        run.passes.push_back(p);
+    }
+    return run;
+}
+
+// Every seed's run of one graph: times over the measured frames of all seeds; errors of one seed
+// as FrameErrors gives them, of several the means over the seeds (combineSeedErrors).
+BenchResult runBenchGraph(const BenchSpec& spec, const BenchGraph& g, gpu::Context& ctx,
+                          std::vector<MeasuredReference>& references,
+                          const std::optional<sampling::LayerRadii>& layers,
+                          std::vector<FrameErrors>* floors, bool quiet) {
+    std::vector<SeedRun> runs;
+    for (size_t s = 0; s < spec.seeds.size(); ++s)
+        runs.push_back(runBenchSeed(spec, g, spec.seeds[s], ctx, references, layers,
+                                    s == 0 ? floors : nullptr, quiet));
+    BenchResult result;
+    result.graph = g;
+    result.output = runs.front().output;
+    std::vector<double> frameMs;
+    for (const auto& run : runs)
+        frameMs.insert(frameMs.end(), run.frameMs.begin(), run.frameMs.end());
+    result.frameMs = computeStats(frameMs);
+    // The same graph every seed: the same passes in the same order.
+    result.passes = runs.back().passes;
+    for (size_t n = 0; n < result.passes.size(); ++n) {
+        std::vector<double> ms;
+        uint64_t executions = 0;
+        for (const auto& run : runs) {
+            ms.insert(ms.end(), run.passMs[n].begin(), run.passMs[n].end());
+            executions += run.passes[n].executions;
+        }
+        result.passes[n].gpuMs = computeStats(ms);
+        result.passes[n].executions = executions;
+    }
+    for (size_t i = 0; i < references.size(); ++i) {
+        BenchTrack track{references[i].label, {}, {}};
+        if (runs.size() == 1) {
+            track.meanErrors = runs[0].errors[i].mean();
+            track.errors = runs[0].errors[i].json();
+        } else {
+            std::vector<image::ImageMetrics> means;
+            std::vector<json> perSeed;
+            for (const auto& run : runs) {
+                means.push_back(run.errors[i].mean());
+                perSeed.push_back(run.errors[i].json());
+            }
+            track.meanErrors = meanOverSeeds(means);
+            track.errors = combineSeedErrors(spec.seeds, perSeed);
+        }
+        if (i > 0) {
+            result.against.push_back(std::move(track));
+            continue;
+        }
+        result.meanErrors = track.meanErrors;
+        result.errors = track.errors;
+        result.temporalError = track.errors.at("temporal_error").get<double>();
     }
     return result;
 }
@@ -249,7 +310,7 @@ int benchCommand(const BenchOptions& o) {
     std::optional<gpu::Context> device;
     gpu::Context& ctx = openDevice(device, o.device, o.validation, o.quiet);
     json referenceInfo, floorInfo;
-    const fs::path refPath = prepareReference(spec, folder, "reference", referenceSeed(spec.seed),
+    const fs::path refPath = prepareReference(spec, folder, "reference", referenceSeed(spec.seeds),
                                               ctx, o.quiet, referenceInfo);
     std::vector<MeasuredReference> references;
     references.push_back(
@@ -260,7 +321,7 @@ int benchCommand(const BenchOptions& o) {
     referenceInfo["mode"] = references[0].source.perFrame() ? "per-frame" : "single";
     if (spec.noiseFloorRender) {
         const fs::path floorPath =
-            prepareReference(spec, folder, "reference_noise_floor", noiseFloorSeed(spec.seed), ctx,
+            prepareReference(spec, folder, "reference_noise_floor", noiseFloorSeed(spec.seeds), ctx,
                              o.quiet, floorInfo);
         references[0].second.emplace(source(floorPath.string(), "/noise_floor"));
     } else if (fileFloor) {
@@ -284,6 +345,10 @@ int benchCommand(const BenchOptions& o) {
     }
     const std::vector<bool> pareto = image::paretoOptimal(ms, rmse);
     for (size_t i = 0; i < results.size(); ++i) results[i].pareto = pareto[i];
+    if (spec.seeds.size() > 1)
+        for (size_t i = 1; i < results.size(); ++i)
+            results[i].difference =
+                pairedDifference(results[i].errors, results[0].errors, results[0].graph.label);
     json noiseFloor = json::object();
     for (size_t i = 0; i < references.size() && i < floors.size(); ++i)
         if (references[i].second) noiseFloor[references[i].label] = floors[i].json();
@@ -302,8 +367,9 @@ int benchCommand(const BenchOptions& o) {
         {"size", {spec.width, spec.height}},
         {"frames", spec.frames},
         {"warmup", spec.warmup},
-        {"seed", spec.seed},
+        {"seed", spec.seeds.front()},
         {"reference", referenceInfo}};
+    if (spec.seeds.size() > 1) header["seeds"] = spec.seeds;
     if (!noiseFloor.empty()) header["noise_floor"] = noiseFloor;
     if (layers)
         header["layers"] = {{"r0", layers->r0},

@@ -1,5 +1,6 @@
 // Parsing of `fovea bench` files (docs/bench.md). Every error names the file and the JSON
 // pointer of the offending value; paths are relative to the bench file's folder.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -94,6 +95,23 @@ BenchReference parseReference(const Reader& r, const json& j) {
     return ref;
 }
 
+// `seeds`: the alternative to `seed`, every graph runs once per seed (BenchSeeds.cpp).
+std::vector<uint64_t> parseSeeds(const Reader& r, const json& j) {
+    if (j.contains("seed"))
+        r.fail("/seeds", "give either /seed (one run seed) or /seeds (several), not both");
+    const json& s = j["seeds"];
+    if (!s.is_array() || s.empty()) r.fail("/seeds", "expected a non-empty array of integers");
+    std::vector<uint64_t> seeds;
+    for (size_t i = 0; i < s.size(); ++i) {
+        const std::string pointer = "/seeds/" + std::to_string(i);
+        const uint64_t seed = r.count(s[i], pointer, 0, 0xffffffffu);
+        if (std::find(seeds.begin(), seeds.end(), seed) != seeds.end())
+            r.fail(pointer, "seed " + std::to_string(seed) + " is given twice");
+        seeds.push_back(seed);
+    }
+    return seeds;
+}
+
 }  // namespace
 
 BenchSpec parseBenchFile(const fs::path& file) {
@@ -105,8 +123,8 @@ BenchSpec parseBenchFile(const fs::path& file) {
     Reader r(name);
     r.keys(j, "",
            {"version", "name", "description", "scene", "camera", "size", "stereo", "sun", "frames",
-            "warmup", "seed", "output", "reference", "noise_floor", "also_against", "layers",
-            "graphs"});
+            "warmup", "seed", "seeds", "output", "reference", "noise_floor", "also_against",
+            "layers", "graphs"});
     BenchSpec spec;
     spec.file = name;
     if (r.count(r.need(j, "", "version"), "/version", 1, 1) != 1) r.fail("/version", "expected 1");
@@ -131,7 +149,8 @@ BenchSpec parseBenchFile(const fs::path& file) {
     if (spec.warmup >= spec.frames)
         r.fail("/warmup", "warm-up (" + std::to_string(spec.warmup) +
                               ") leaves no measured frame of " + std::to_string(spec.frames));
-    if (j.contains("seed")) spec.seed = r.count(j["seed"], "/seed", 0, 0xffffffffu);
+    if (j.contains("seed")) spec.seeds = {r.count(j["seed"], "/seed", 0, 0xffffffffu)};
+    if (j.contains("seeds")) spec.seeds = parseSeeds(r, j);
     if (j.contains("output")) spec.output = r.string(j["output"], "/output");
     spec.reference = parseReference(r, r.need(j, "", "reference"));
     if (j.contains("noise_floor")) {

@@ -47,16 +47,18 @@ json resultJson(const BenchResult& r) {
                           {"status", p.status},
                           {"executions", p.executions},
                           {"gpu_ms", statsJson(p.gpuMs)}});
-    return {{"label", r.graph.label},
-            {"file", r.graph.file},
-            {"set", r.graph.sets},
-            {"output", r.output},
-            {"frame_ms", statsJson(r.frameMs)},
-            {"speedup", r.speedup},
-            {"pareto", r.pareto},
-            {"errors", r.errors},
-            {"also_against", against},
-            {"passes", passes}};
+    json out = {{"label", r.graph.label},
+                {"file", r.graph.file},
+                {"set", r.graph.sets},
+                {"output", r.output},
+                {"frame_ms", statsJson(r.frameMs)},
+                {"speedup", r.speedup},
+                {"pareto", r.pareto},
+                {"errors", r.errors},
+                {"also_against", against},
+                {"passes", passes}};
+    if (!r.difference.is_null()) out["difference"] = r.difference;
+    return out;
 }
 
 }  // namespace
@@ -133,9 +135,14 @@ void errorTable(std::ostream& t, const json& header, const std::vector<BenchResu
       << (layers.empty() ? "" : "---:|---:|---:|") << "\n";
     auto row = [&](const std::string& name, const json& e, const json* fl) {
         const auto [worstFrame, worstPercent] = worstOf(e);
+        // Several seeds: the worst frame of all seeds, and which seed it was.
+        const std::string seed =
+            e.contains("worst") && e["worst"].contains("seed")
+                ? " (seed " + std::to_string(e["worst"]["seed"].get<uint64_t>()) + ")"
+                : "";
         t << "| " << md(name) << " | " << number(meanOf(e, "rmse_percent"), "%.4f") << " | "
           << (fl ? number(correctedPercent(e, fl), "%.4f") : std::string("—")) << " | "
-          << worstFrame << " | " << number(worstPercent, "%.4f");
+          << worstFrame << seed << " | " << number(worstPercent, "%.4f");
         if (!layers.empty())
             for (double v : layerRmsePercent(e)) t << " | " << number(v, "%.4f");
         t << " |\n";
@@ -174,6 +181,8 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
          "rmse_percent_fovea,rmse_percent_middle,rmse_percent_outer,pareto";
     for (const auto& a : results.front().against)
         c << "," << csv("rmse_percent_" + a.label) << "," << csv("worst_rmse_percent_" + a.label);
+    const bool seeds = results.front().errors.contains("seeds");  // several seeds
+    if (seeds) c << seedCsvHeader();
     c << "\n";
     for (const auto& r : results) {
         const auto& m = r.meanErrors;
@@ -193,6 +202,7 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
         for (const auto& a : r.against)
             c << "," << number(a.meanErrors.rmsePercent, "%.6g") << ","
               << number(worstOf(a.errors).second, "%.6g");
+        if (seeds) c << seedCsvRow(r);
         c << "\n";
     }
     folder.writeText("bench.csv", c.str());
@@ -209,7 +219,15 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
       << " warm-up. Reference: " << header["reference"]["path"].get<std::string>()
       << ". Times are GPU medians over the "
       << "measured frames; errors are means over them; speedup is against the first graph ("
-      << md(results.front().graph.label) << ") of the same run.\n\n"
+      << md(results.front().graph.label) << ") of the same run.";
+    if (seeds) {
+        t << " Every graph ran once per seed (";
+        const json& list = header.at("seeds");
+        for (size_t i = 0; i < list.size(); ++i) t << (i ? ", " : "") << list[i];
+        t << "): times are over the measured frames of all seeds, errors are the means over the "
+             "seeds of each seed's mean, ± their standard error.";
+    }
+    t << "\n\n"
       << "| Graph | Output | Frame ms (median) | Speedup | RMSE % | PSNR dB | SSIM | Temporal "
          "error | Pareto "
          "|\n|---|---|---:|---:|---:|---:|---:|---:|---|\n";
@@ -217,9 +235,9 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
         const auto& m = r.meanErrors;
         t << "| " << md(r.graph.label) << " | " << md(r.output) << " | "
           << number(r.frameMs.median, "%.3f") << " | " << number(r.speedup, "%.2fx") << " | "
-          << number(m.rmsePercent, "%.4f") << " | " << number(m.psnr, "%.2f") << " | "
-          << number(m.ssim, "%.4f") << " | " << number(r.temporalError, "%.5f") << " | "
-          << (r.pareto ? "**yes**" : "") << " |\n";
+          << number(m.rmsePercent, "%.4f") << standardErrorSuffix(r.errors, "rmse_percent", "%.4f")
+          << " | " << number(m.psnr, "%.2f") << " | " << number(m.ssim, "%.4f") << " | "
+          << number(r.temporalError, "%.5f") << " | " << (r.pareto ? "**yes**" : "") << " |\n";
     }
     t << "\nPareto: no other graph of this run is both faster (median frame ms) and closer to the "
          "reference (RMSE %); the front is marked in the plot.\n";
@@ -243,9 +261,16 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
       << "| Graph | 0-5 deg | 5-20 deg | 20+ deg |\n|---|---:|---:|---:|\n";
     for (const auto& r : results) {
         t << "| " << md(r.graph.label);
-        for (double v : bandRmse(r.errors)) t << " | " << number(v, "%.5f");
+        static const char* const kBandFigures[] = {"rmse_0_5deg", "rmse_5_20deg",
+                                                   "rmse_20deg_plus"};
+        const auto bands = bandRmse(r.errors);
+        for (size_t b = 0; b < bands.size(); ++b)
+            t << " | " << number(bands[b], "%.5f")
+              << (std::isnan(bands[b]) ? ""
+                                       : standardErrorSuffix(r.errors, kBandFigures[b], "%.5f"));
         t << " |\n";
     }
+    seedTables(t, results);
     t << "\n## GPU ms per pass (median over measured frames)\n\n"
       << "| Graph | Pass | Type | Median ms | Executions | Status (last frame) |\n"
       << "|---|---|---|---:|---:|---|\n";

@@ -174,6 +174,31 @@ TEST(CliBench, BadBenchFilesNameThePointer) {
          },
          {"/layers/r0", "number"}},
         {[](json& j) { j["noise_floor"] = "nofloor.exr"; }, {"/noise_floor", "nofloor.exr"}},
+        // Several seeds (docs/bench.md): a non-empty array of distinct integers, not with `seed`.
+        {[](json& j) {
+             j["seed"] = 1;
+             j["seeds"] = {1, 2};
+         },
+         {"/seeds", "not both"}},
+        {[](json& j) { j["seeds"] = json::array(); }, {"/seeds", "non-empty array"}},
+        {[](json& j) { j["seeds"] = 3; }, {"/seeds", "non-empty array"}},
+        {[](json& j) {
+             j["seeds"] = {1, 2, 1};
+         },
+         {"/seeds/2", "seed 1 is given twice"}},
+        {[](json& j) {
+             j["seeds"] = {1, "2"};
+         },
+         {"/seeds/1", "integer"}},
+        {[](json& j) {
+             j["seeds"] = {1, 2.5};
+         },
+         {"/seeds/1", "integer"}},
+        {[](json& j) { j["seeds"] = {-1}; }, {"/seeds/0", "integer"}},
+        {[](json& j) {
+             j["seedz"] = {1, 2};
+         },
+         {"/seedz", "did you mean"}},
     };
     for (size_t i = 0; i < cases.size(); ++i) {
         json spec = tinyBench();
