@@ -68,3 +68,11 @@ cat "$OUT/koskela_vs_peres_cornell/bench.md"
 
 echo "== BMFR per-kernel GPU ms at 128x128 and 256x256 (P2 Table 4 layout)"
 "$BUILD/tests/fovea_tests" --gtest_also_run_disabled_tests --gtest_filter='BMFRBench.*' | grep -v '^\[' || true
+
+echo "== Koskela P5 (issue 11): Cartesian vs Visual-Polar BMFR+TAA (and SVGF at 128x128)"
+for b in koskela_vp_vs_cartesian koskela_vp_cornell_256 koskela_vp_cornell_256_stereo \
+  koskela_vp_forest_256 koskela_vp_forest_256_stereo koskela_vp_cornell_512 koskela_vp_forest_512 \
+  koskela_vp_cornell_1280x1440 koskela_vp_forest_1280x1440; do
+  "$FOVEA" bench "graphs/benches/$b.json" --out "$OUT/$b" --overwrite --quiet
+  cat "$OUT/$b/bench.md"
+done
