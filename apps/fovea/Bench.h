@@ -91,6 +91,12 @@ struct BenchResult {
     nlohmann::json difference;
 };
 
+// Table text shared by bench.csv/bench.md and the seed tables (BenchText.cpp): a number in
+// printf `format` ("nan", "inf" spelled out: a PSNR of identical images is infinite), and a
+// Markdown table cell (a '|' would split the cell).
+std::string benchNumber(double v, const char* format = "%.4g");
+std::string benchMarkdown(const std::string& s);
+
 // Several seeds (BenchSeeds.cpp, docs/bench.md "Several seeds").
 // The errors of one output over the seeds, from each seed's FrameErrors::json(): "mean" (the mean
 // over the seeds of each seed's mean; PSNR null when any is infinite), "standard_error" (same

@@ -11,16 +11,10 @@
 namespace fovea::app {
 
 namespace fs = std::filesystem;
+
 using nlohmann::json;
 
 namespace {
-
-std::string number(double v, const char* format = "%.4g") {
-    if (std::isinf(v)) return "inf";  // PSNR of identical images
-    char text[64];
-    std::snprintf(text, sizeof text, format, v);
-    return text;
-}
 
 // CSV field: quoted when it holds a comma, quote or newline (RFC 4180).
 std::string csv(const std::string& s) {
@@ -31,11 +25,6 @@ std::string csv(const std::string& s) {
 }
 
 // Markdown table cell: a '|' would split the cell.
-std::string md(const std::string& s) {
-    std::string out;
-    for (char c : s) out += c == '|' ? std::string("\\|") : std::string(1, c);
-    return out;
-}
 
 json resultJson(const BenchResult& r) {
     json against = json::object();
@@ -119,8 +108,8 @@ std::string layerHeading(const json& header) {
     if (!header.contains("layers")) return "";
     const json& l = header["layers"];
     const std::string unit = l.at("unit").get<std::string>() == "degrees" ? " deg" : " px";
-    return "fovea (d <= " + number(l.at("r0").get<double>(), "%g") + unit +
-           ") | middle (<= " + number(l.at("r1").get<double>(), "%g") + unit + ") | outer";
+    return "fovea (d <= " + benchNumber(l.at("r0").get<double>(), "%g") + unit +
+           ") | middle (<= " + benchNumber(l.at("r1").get<double>(), "%g") + unit + ") | outer";
 }
 
 // The error table of one reference: per graph the mean RMSE %, the RMSE % corrected for the
@@ -140,11 +129,11 @@ void errorTable(std::ostream& t, const json& header, const std::vector<BenchResu
             e.contains("worst") && e["worst"].contains("seed")
                 ? " (seed " + std::to_string(e["worst"]["seed"].get<uint64_t>()) + ")"
                 : "";
-        t << "| " << md(name) << " | " << number(meanOf(e, "rmse_percent"), "%.4f") << " | "
-          << (fl ? number(correctedPercent(e, fl), "%.4f") : std::string("—")) << " | "
-          << worstFrame << seed << " | " << number(worstPercent, "%.4f");
+        t << "| " << benchMarkdown(name) << " | " << benchNumber(meanOf(e, "rmse_percent"), "%.4f")
+          << " | " << (fl ? benchNumber(correctedPercent(e, fl), "%.4f") : std::string("—"))
+          << " | " << worstFrame << seed << " | " << benchNumber(worstPercent, "%.4f");
         if (!layers.empty())
-            for (double v : layerRmsePercent(e)) t << " | " << number(v, "%.4f");
+            for (double v : layerRmsePercent(e)) t << " | " << benchNumber(v, "%.4f");
         t << " |\n";
     };
     if (floor) row("*noise floor: 2nd reference*", *floor, nullptr);
@@ -161,8 +150,8 @@ void floorNote(std::ostream& t, const json& header, const std::string& label) {
     }
     const double f = meanOf(*floor, "rmse_percent");
     t << "Noise floor: a second reference with another seed differs from this one by RMSE "
-      << number(f, "%.4f") << " %, so the reference itself is about "
-      << number(f / std::sqrt(2.0), "%.4f")
+      << benchNumber(f, "%.4f") << " %, so the reference itself is about "
+      << benchNumber(f / std::sqrt(2.0), "%.4f")
       << " % (floor / sqrt 2) from the truth. A graph's error against it is at least that; "
          "\"above the reference noise\" takes half the floor's MSE out (sqrt(MSE - floor MSE / "
          "2)), 0 = within the reference's noise. Differences between graphs smaller than the "
@@ -187,21 +176,21 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
     for (const auto& r : results) {
         const auto& m = r.meanErrors;
         c << csv(r.graph.label) << "," << csv(r.graph.file) << "," << csv(r.output) << ","
-          << number(r.frameMs.median, "%.6g") << "," << number(r.frameMs.mean, "%.6g") << ","
-          << number(r.speedup, "%.6g") << "," << number(m.rmsePercent, "%.6g") << ","
-          << number(m.rmse, "%.6g") << "," << number(m.relMse, "%.6g") << ","
-          << number(m.psnr, "%.6g") << "," << number(m.ssim, "%.6g") << ","
-          << number(r.temporalError, "%.6g");
-        for (double v : bandRmse(r.errors)) c << "," << number(v, "%.6g");
+          << benchNumber(r.frameMs.median, "%.6g") << "," << benchNumber(r.frameMs.mean, "%.6g")
+          << "," << benchNumber(r.speedup, "%.6g") << "," << benchNumber(m.rmsePercent, "%.6g")
+          << "," << benchNumber(m.rmse, "%.6g") << "," << benchNumber(m.relMse, "%.6g") << ","
+          << benchNumber(m.psnr, "%.6g") << "," << benchNumber(m.ssim, "%.6g") << ","
+          << benchNumber(r.temporalError, "%.6g");
+        for (double v : bandRmse(r.errors)) c << "," << benchNumber(v, "%.6g");
         const auto [worstFrame, worstPercent] = worstOf(r.errors);
-        c << "," << number(floor ? meanOf(*floor, "rmse_percent") : std::nan(""), "%.6g") << ","
-          << number(correctedPercent(r.errors, floor), "%.6g") << "," << worstFrame << ","
-          << number(worstPercent, "%.6g");
-        for (double v : layerRmsePercent(r.errors)) c << "," << number(v, "%.6g");
+        c << "," << benchNumber(floor ? meanOf(*floor, "rmse_percent") : std::nan(""), "%.6g")
+          << "," << benchNumber(correctedPercent(r.errors, floor), "%.6g") << "," << worstFrame
+          << "," << benchNumber(worstPercent, "%.6g");
+        for (double v : layerRmsePercent(r.errors)) c << "," << benchNumber(v, "%.6g");
         c << "," << (r.pareto ? "true" : "false");
         for (const auto& a : r.against)
-            c << "," << number(a.meanErrors.rmsePercent, "%.6g") << ","
-              << number(worstOf(a.errors).second, "%.6g");
+            c << "," << benchNumber(a.meanErrors.rmsePercent, "%.6g") << ","
+              << benchNumber(worstOf(a.errors).second, "%.6g");
         if (seeds) c << seedCsvRow(r);
         c << "\n";
     }
@@ -219,7 +208,7 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
       << " warm-up. Reference: " << header["reference"]["path"].get<std::string>()
       << ". Times are GPU medians over the "
       << "measured frames; errors are means over them; speedup is against the first graph ("
-      << md(results.front().graph.label) << ") of the same run.";
+      << benchMarkdown(results.front().graph.label) << ") of the same run.";
     if (seeds) {
         t << " Every graph ran once per seed (";
         const json& list = header.at("seeds");
@@ -233,11 +222,12 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
          "|\n|---|---|---:|---:|---:|---:|---:|---:|---|\n";
     for (const auto& r : results) {
         const auto& m = r.meanErrors;
-        t << "| " << md(r.graph.label) << " | " << md(r.output) << " | "
-          << number(r.frameMs.median, "%.3f") << " | " << number(r.speedup, "%.2fx") << " | "
-          << number(m.rmsePercent, "%.4f") << standardErrorSuffix(r.errors, "rmse_percent", "%.4f")
-          << " | " << number(m.psnr, "%.2f") << " | " << number(m.ssim, "%.4f") << " | "
-          << number(r.temporalError, "%.5f") << " | " << (r.pareto ? "**yes**" : "") << " |\n";
+        t << "| " << benchMarkdown(r.graph.label) << " | " << benchMarkdown(r.output) << " | "
+          << benchNumber(r.frameMs.median, "%.3f") << " | " << benchNumber(r.speedup, "%.2fx")
+          << " | " << benchNumber(m.rmsePercent, "%.4f")
+          << standardErrorSuffix(r.errors, "rmse_percent", "%.4f") << " | "
+          << benchNumber(m.psnr, "%.2f") << " | " << benchNumber(m.ssim, "%.4f") << " | "
+          << benchNumber(r.temporalError, "%.5f") << " | " << (r.pareto ? "**yes**" : "") << " |\n";
     }
     t << "\nPareto: no other graph of this run is both faster (median frame ms) and closer to the "
          "reference (RMSE %); the front is marked in the plot.\n";
@@ -248,7 +238,7 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
     errorTable(t, header, results, "reference", primary);
     for (size_t a = 0; a < results.front().against.size(); ++a) {
         const std::string label = results.front().against[a].label;
-        t << "\n## Error against the reference '" << md(label) << "'";
+        t << "\n## Error against the reference '" << benchMarkdown(label) << "'";
         if (header.contains("also_against") && a < header["also_against"].size())
             t << " (" << header["also_against"][a].at("path").get<std::string>() << ")";
         t << "\n\n";
@@ -260,12 +250,12 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
     t << "\n## RMSE per eccentricity band (degrees from the gaze; mean over measured frames)\n\n"
       << "| Graph | 0-5 deg | 5-20 deg | 20+ deg |\n|---|---:|---:|---:|\n";
     for (const auto& r : results) {
-        t << "| " << md(r.graph.label);
+        t << "| " << benchMarkdown(r.graph.label);
         static const char* const kBandFigures[] = {"rmse_0_5deg", "rmse_5_20deg",
                                                    "rmse_20deg_plus"};
         const auto bands = bandRmse(r.errors);
         for (size_t b = 0; b < bands.size(); ++b)
-            t << " | " << number(bands[b], "%.5f")
+            t << " | " << benchNumber(bands[b], "%.5f")
               << (std::isnan(bands[b]) ? ""
                                        : standardErrorSuffix(r.errors, kBandFigures[b], "%.5f"));
         t << " |\n";
@@ -276,9 +266,9 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
       << "|---|---|---|---:|---:|---|\n";
     for (const auto& r : results)
         for (const auto& p : r.passes)
-            t << "| " << md(r.graph.label) << " | " << md(p.name) << " | " << md(p.type) << " | "
-              << number(p.gpuMs.median, "%.3f") << " | " << p.executions << " | " << p.status
-              << " |\n";
+            t << "| " << benchMarkdown(r.graph.label) << " | " << benchMarkdown(p.name) << " | "
+              << benchMarkdown(p.type) << " | " << benchNumber(p.gpuMs.median, "%.3f") << " | "
+              << p.executions << " | " << p.status << " |\n";
     t << "\n![run time against error](bench.svg)\n";
     folder.writeText("bench.md", t.str());
 

@@ -6,7 +6,6 @@
 // (same seed, same samples for both graphs) removes the noise the two graphs share.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <set>
 
 #include "apps/fovea/Bench.h"
@@ -16,21 +15,6 @@ namespace fovea::app {
 using nlohmann::json;
 
 namespace {
-
-std::string formatNumber(double v, const char* format) {
-    if (std::isnan(v)) return "nan";
-    if (std::isinf(v)) return "inf";
-    char text[64];
-    std::snprintf(text, sizeof text, format, v);
-    return text;
-}
-
-// Markdown table cell: a '|' would split the cell.
-std::string md(const std::string& s) {
-    std::string out;
-    for (char c : s) out += c == '|' ? std::string("\\|") : std::string(1, c);
-    return out;
-}
 
 double meanOf(const std::vector<double>& v) {
     double sum = 0;
@@ -142,8 +126,8 @@ const Figure& figureNamed(const std::string& name) {
 std::string differenceCell(const json& difference, const std::string& name, const char* format) {
     if (!difference.contains("figures") || !difference["figures"].contains(name)) return "—";
     const json& d = difference["figures"][name];
-    const std::string text = formatNumber(d.at("mean").get<double>(), format) + " ± " +
-                             formatNumber(d.at("standard_error").get<double>(), format);
+    const std::string text = benchNumber(d.at("mean").get<double>(), format) + " ± " +
+                             benchNumber(d.at("standard_error").get<double>(), format);
     return d.at("significant").get<bool>() ? "**" + text + " (> 2 s.e.)**" : text;
 }
 
@@ -234,7 +218,7 @@ std::string seedCsvRow(const BenchResult& r) {
     for (const auto& s : r.errors.at("seeds"))
         row += (row.size() > 1 ? " " : "") + std::to_string(s.at("seed").get<uint64_t>());
     for (const auto& f : kFigures)
-        row += "," + formatNumber(figureOf(r.errors.at("standard_error"), f), "%.6g");
+        row += "," + benchNumber(figureOf(r.errors.at("standard_error"), f), "%.6g");
     for (const auto& f : kFigures) {
         const json* d = r.difference.contains("figures") && r.difference["figures"].contains(f.name)
                             ? &r.difference["figures"][f.name]
@@ -243,8 +227,8 @@ std::string seedCsvRow(const BenchResult& r) {
             row += ",nan,nan,";
             continue;
         }
-        row += "," + formatNumber(d->at("mean").get<double>(), "%.6g") + "," +
-               formatNumber(d->at("standard_error").get<double>(), "%.6g") + "," +
+        row += "," + benchNumber(d->at("mean").get<double>(), "%.6g") + "," +
+               benchNumber(d->at("standard_error").get<double>(), "%.6g") + "," +
                (d->at("significant").get<bool>() ? "true" : "false");
     }
     return row;
@@ -252,7 +236,7 @@ std::string seedCsvRow(const BenchResult& r) {
 
 std::string standardErrorSuffix(const json& errors, const std::string& figure, const char* format) {
     if (!errors.contains("standard_error")) return "";
-    return " ± " + formatNumber(figureOf(errors["standard_error"], figureNamed(figure)), format);
+    return " ± " + benchNumber(figureOf(errors["standard_error"], figureNamed(figure)), format);
 }
 
 void seedTables(std::ostream& t, const std::vector<BenchResult>& results) {
@@ -280,15 +264,15 @@ void seedTables(std::ostream& t, const std::vector<BenchResult>& results) {
       << " | Temporal error |\n|---|---:|" << align << "---:|\n";
     for (const auto& r : results)
         for (const auto& s : r.errors.at("seeds")) {
-            t << "| " << md(r.graph.label) << " | " << s.at("seed").get<uint64_t>();
+            t << "| " << benchMarkdown(r.graph.label) << " | " << s.at("seed").get<uint64_t>();
             for (const auto& c : columns)
-                t << " | " << formatNumber(figureOf(s.at("mean"), figureNamed(c)), format(c));
-            t << " | " << formatNumber(s.at("temporal_error").get<double>(), "%.5f") << " |\n";
+                t << " | " << benchNumber(figureOf(s.at("mean"), figureNamed(c)), format(c));
+            t << " | " << benchNumber(s.at("temporal_error").get<double>(), "%.5f") << " |\n";
         }
 
     if (results.size() < 2) return;
     const std::string& base = results.front().graph.label;
-    t << "\n## Difference against " << md(base) << " (paired over seeds)\n\n"
+    t << "\n## Difference against " << benchMarkdown(base) << " (paired over seeds)\n\n"
       << "Per seed the graph's error minus " << base
       << "'s with the same seed, then the mean over the " << first.at("seeds").size()
       << " seeds ± its standard error (sample standard deviation / sqrt(seeds)). Negative: "
@@ -298,7 +282,7 @@ void seedTables(std::ostream& t, const std::vector<BenchResult>& results) {
          "than the seed-to-seed spread explains; otherwise these seeds do not resolve it.\n\n"
       << "| Graph | " << headings << " |\n|---|" << align << "\n";
     for (size_t i = 1; i < results.size(); ++i) {
-        t << "| " << md(results[i].graph.label);
+        t << "| " << benchMarkdown(results[i].graph.label);
         for (const auto& c : columns)
             t << " | " << differenceCell(results[i].difference, c, format(c));
         t << " |\n";
