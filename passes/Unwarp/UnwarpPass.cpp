@@ -12,10 +12,12 @@ namespace fovea::passes {
 namespace {
 constexpr int kMaxLevels = 4;           // level 0 (the input) + mip1..mip3
 constexpr uint64_t kKeyBytes = 5 * 16;  // unwarp_lookup.comp: uvec4 key[5]
-// unwarp_lookup.comp's unwarp_rebuild: 4 VkDispatchIndirectCommands padded to 16 bytes (the
-// lookup rebuild, phi mip levels 1..3).
+// unwarp_lookup.comp's unwarp_rebuild: 5 VkDispatchIndirectCommands padded to 16 bytes (the
+// lookup rebuild, phi mip levels 1..3, unwarp.comp's fine dispatch), a uvec4 box per eye and
+// the highest column the fine dispatch reads per eye (uint[4]).
 constexpr uint64_t kArgsStride = 16;
-constexpr uint64_t kRebuildArgsBytes = 4 * kArgsStride;
+constexpr uint64_t kFineArgsOffset = 4 * kArgsStride;
+constexpr uint64_t kRebuildArgsBytes = 8 * kArgsStride;
 }  // namespace
 
 void UnwarpPass::params(graph::ParamVisitor& v) {
@@ -66,6 +68,8 @@ void UnwarpPass::compile(graph::CompileContext& ctx) {
     mMips = ctx.createPipeline("visual_polar/phi_mips.comp");
     mLookup = ctx.createPipeline("visual_polar/unwarp_lookup.comp", {}, {"unwarp_rebuild"});
     mMap = ctx.createPipeline("visual_polar/unwarp.comp");
+    mMapFine =
+        ctx.createPipeline("visual_polar/unwarp.comp", {{"UNWARP_FINE", "1"}}, {"unwarp_rebuild"});
     mBlurRows = ctx.createPipeline("visual_polar/foveated_blur.comp");
     mBlurColumns =
         ctx.createPipeline("visual_polar/foveated_blur.comp", {{"FOVEATED_BLUR_VERTICAL", "1"}});
@@ -85,10 +89,10 @@ void UnwarpPass::execute(graph::ExecuteContext& ctx) {
     const auto& out = ctx.image("result");
     const int levels = std::clamp(mLevels, 1, kMaxLevels);
     // P5 §3.4-3.5: the sampling positions and sigma per pixel live in `lookup`. A one-thread
-    // dispatch compares the mapping key with the stored one and writes the group counts of the
-    // rebuild (none when unchanged) and of the phi mip levels (none for a level the mapping
-    // never reads), so neither costs a dispatch over the image for nothing: a per-pixel branch
-    // would not skip the rebuild's math on llvmpipe (docs/passes/Unwarp.md "Cost").
+    // dispatch compares the mapping key with the stored one and writes the group count of the
+    // rebuild (none when unchanged), so it costs no dispatch over the image for nothing: a
+    // per-pixel branch would not skip the rebuild's math on llvmpipe (docs/passes/Unwarp.md
+    // "Cost").
     const float sigmaMax = mBlurSigma * float(out.height()) / 1440.0f;
     const auto groups = mLookup->groupCount(out.width(), out.height());
     const auto mipGroups = mMips->groupCount(vpImage.width(), (vpImage.height() + 1) / 2);
@@ -100,25 +104,39 @@ void UnwarpPass::execute(graph::ExecuteContext& ctx) {
         .set("useCache", uint32_t(mCache && mKeyStored))
         .set("groupsX", groups[0])
         .set("groupsY", groups[1])
-        .set("mipGroupsX", mipGroups[0])
         .set("mipGroupsY", mipGroups[1])
         .set("mode", 0u);
     mLookup->dispatch(ctx.cmd(), 1, 1);
     gpu::computeToIndirectBarrier(ctx.cmd());
+    mLookup->set("mode", 1u);
+    mLookup->dispatchIndirect(ctx.cmd(), *mRebuildArgs);
+    gpu::computeToComputeBarrier(ctx.cmd());
+    // The group counts of the fine mapping and of the phi mips, from the boxes of pixels with
+    // L > 0 the rebuild grew (or kept).
+    mLookup->set("mode", 2u);
+    mLookup->dispatch(ctx.cmd(), 1, 1);
+    gpu::computeToIndirectBarrier(ctx.cmd());
     // P5 §3.4: level k of a column holds ceil(n / 2^k) rows, each the average of two rows of
-    // level k - 1 (wrapped); one dispatch per level, ordered by barriers.
+    // level k - 1 (wrapped); one dispatch per level, ordered by barriers, over the columns the
+    // fine mapping reads (none for a level it never reads).
     ctx.bindFields(*mMips);
     for (int level = 1; level < levels; ++level) {
         mMips->set("level", uint32_t(level));
         mMips->dispatchIndirect(ctx.cmd(), *mRebuildArgs, kArgsStride * uint64_t(level));
         gpu::computeToComputeBarrier(ctx.cmd());
     }
-    mLookup->set("mode", 1u);
-    mLookup->dispatchIndirect(ctx.cmd(), *mRebuildArgs);
-    gpu::computeToComputeBarrier(ctx.cmd());
+    // P5 §3.4's trilinear fetch only where a pixel covers more than one phi row (L > 0: the fovea
+    // at the default reduction): the full-screen dispatch samples level 0, the fine one redoes
+    // the pixels in each eye's box of L > 0 (the same arithmetic as one trilinear dispatch).
     ctx.bindFields(*mMap);
     mMap->set("levels", uint32_t(levels)).set("toResult", uint32_t(!mBlur));
     mMap->dispatch(ctx.cmd(), out.width(), out.height());
+    gpu::computeToComputeBarrier(ctx.cmd());
+    ctx.bindFields(*mMapFine);
+    mMapFine->bind("unwarp_rebuild", *mRebuildArgs)
+        .set("levels", uint32_t(levels))
+        .set("toResult", uint32_t(!mBlur));
+    mMapFine->dispatchIndirect(ctx.cmd(), *mRebuildArgs, kFineArgsOffset);
     mKeyStored = true;
     if (!mBlur) return;
     // Two separable passes: rows into blur_tmp, then columns into result.

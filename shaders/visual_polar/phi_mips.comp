@@ -26,18 +26,21 @@ vec4 loadLevel(uint level, ivec2 p) {
     return imageLoad(mip2, p);
 }
 
+// Dispatched indirectly by unwarp_lookup.comp (mode 2): x covers the columns the fine mapping
+// reads (from column 0), z is the eye.
 void main() {
     ivec2 size = textureSize(color, 0);
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    if (p.x >= size.x) return;
     uint eyes = clamp(vp.grid.z, 1u, 2u);
     // P5 §3.4: levels the mapping never reads are not built (at reduction 0.61, 256x256 and a
     // centre gaze only level 1 is read).
     if (pc.level > highestLevelRead(eyes)) return;
-    uint eye = min(uint(p.x) / max(vp.grid.x, 1u), eyes - 1u);
+    uint eye = min(gl_WorkGroupID.z, eyes - 1u);
     VisualPolarMap m = vpMapOfEye(eye);  // its own staircase phase (P5 §3.3)
-    uint column = uint(p.x) - eye * m.width;
-    if (column >= m.width) return;  // the spare column of an odd side-by-side width
+    uint column = uint(p.x);
+    if (column >= m.width) return;
+    p.x = int(eye * m.width + column);
+    if (p.x >= size.x) return;
     uint above = vpRowsAtLevel(m, column, pc.level - 1u);
     uint rows = vpRowsAtLevel(m, column, pc.level);  // ceil(above / 2)
     if (uint(p.y) >= rows) return;
