@@ -72,7 +72,7 @@ echo "== BMFR per-kernel GPU ms at 128x128 and 256x256 (P2 Table 4 layout)"
 echo "== Koskela P5 (issue 11): Cartesian vs Visual-Polar BMFR+TAA (and SVGF at 128x128)"
 for b in koskela_vp_vs_cartesian koskela_vp_cornell_256 koskela_vp_cornell_256_stereo \
   koskela_vp_forest_256 koskela_vp_forest_256_stereo koskela_vp_cornell_512 koskela_vp_forest_512 \
-  koskela_vp_cornell_1280x1440 koskela_vp_forest_1280x1440; do
+  koskela_vp_cornell_1280x1440 koskela_vp_forest_1280x1440 koskela_vp_reduction_cornell_1280x1440; do
   "$FOVEA" bench "graphs/benches/$b.json" --out "$OUT/$b" --overwrite --quiet
   cat "$OUT/$b/bench.md"
 done
