@@ -116,6 +116,9 @@ nlohmann::json pairedDifference(const nlohmann::json& graph, const nlohmann::jso
 // The figures compared over seeds, in table order: rmse, rmse_percent, the three bands
 // (rmse_0_5deg, ...) and the three layers (rmse_percent_fovea, ...), as in bench.csv.
 const std::vector<std::string>& seedFigureNames();
+// One of those figures from an errors object's "mean" (FrameErrors::json() or
+// combineSeedErrors): layers as RMSE % (100 RMSE, peak 1); NaN when it has none.
+double benchFigure(const nlohmann::json& errors, const std::string& figure);
 // bench.csv's columns for several seeds (appended after the others) and one graph's values.
 std::string seedCsvHeader();
 std::string seedCsvRow(const BenchResult& r);

@@ -54,26 +54,21 @@ json resultJson(const BenchResult& r) {
 
 namespace {
 
+const char* const kBandFigures[] = {"rmse_0_5deg", "rmse_5_20deg", "rmse_20deg_plus"};
+const char* const kLayerFigures[] = {"rmse_percent_fovea", "rmse_percent_middle",
+                                     "rmse_percent_outer"};
+
 // The mean RMSE of the three eccentricity bands (FrameErrors' "bands"; NaN when absent).
 std::vector<double> bandRmse(const json& errors) {
-    std::vector<double> out(3, std::nan(""));
-    const json* bands = nullptr;
-    if (errors.contains("mean") && errors["mean"].contains("bands"))
-        bands = &errors["mean"]["bands"];
-    for (size_t b = 0; bands && b < out.size() && b < bands->size(); ++b)
-        out[b] = (*bands)[b].at("rmse").get<double>();
+    std::vector<double> out;
+    for (const char* f : kBandFigures) out.push_back(benchFigure(errors, f));
     return out;
 }
 
-// The mean RMSE % of the three foveation layers (FrameErrors' "layers"; NaN when absent). The
-// bench's images are compared with peak 1, so RMSE % = 100 RMSE (ImageMetrics.h).
+// The mean RMSE % of the three foveation layers (FrameErrors' "layers"; NaN when absent).
 std::vector<double> layerRmsePercent(const json& errors) {
-    std::vector<double> out(3, std::nan(""));
-    const json* layers = nullptr;
-    if (errors.contains("mean") && errors["mean"].contains("layers"))
-        layers = &errors["mean"]["layers"];
-    for (size_t l = 0; layers && l < out.size() && l < layers->size(); ++l)
-        out[l] = 100.0 * (*layers)[l].at("rmse").get<double>();
+    std::vector<double> out;
+    for (const char* f : kLayerFigures) out.push_back(benchFigure(errors, f));
     return out;
 }
 
@@ -251,8 +246,6 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
       << "| Graph | 0-5 deg | 5-20 deg | 20+ deg |\n|---|---:|---:|---:|\n";
     for (const auto& r : results) {
         t << "| " << benchMarkdown(r.graph.label);
-        static const char* const kBandFigures[] = {"rmse_0_5deg", "rmse_5_20deg",
-                                                   "rmse_20deg_plus"};
         const auto bands = bandRmse(r.errors);
         for (size_t b = 0; b < bands.size(); ++b)
             t << " | " << benchNumber(bands[b], "%.5f")

@@ -133,6 +133,10 @@ std::string differenceCell(const json& difference, const std::string& name, cons
 
 }  // namespace
 
+double benchFigure(const json& errors, const std::string& figure) {
+    return errors.contains("mean") ? figureOf(errors["mean"], figureNamed(figure)) : std::nan("");
+}
+
 const std::vector<std::string>& seedFigureNames() {
     static const std::vector<std::string> kNames = [] {
         std::vector<std::string> names;
