@@ -1,7 +1,6 @@
 // The tables of `fovea bench`: bench.json (everything), bench.csv (one row per graph) and
 // bench.md (the summary and the per-pass breakdown), docs/bench.md.
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 
 #include "apps/fovea/Bench.h"
@@ -11,7 +10,6 @@
 namespace fovea::app {
 
 namespace fs = std::filesystem;
-
 using nlohmann::json;
 
 namespace {
@@ -23,8 +21,6 @@ std::string csv(const std::string& s) {
     for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
     return out + "\"";
 }
-
-// Markdown table cell: a '|' would split the cell.
 
 json resultJson(const BenchResult& r) {
     json against = json::object();

@@ -14,7 +14,7 @@ constexpr int kMaxLevels = 4;           // level 0 (the input) + mip1..mip3
 constexpr uint64_t kKeyBytes = 5 * 16;  // unwarp_lookup.comp: uvec4 key[5]
 // unwarp_lookup.comp's unwarp_rebuild: 5 VkDispatchIndirectCommands padded to 16 bytes (the
 // lookup rebuild, phi mip levels 1..3, unwarp.comp's fine dispatch), a uvec4 box per eye and
-// the highest column the fine dispatch reads per eye (uint[4]).
+// the highest column the fine dispatch reads per eye (uint[2], padded to 16 bytes).
 constexpr uint64_t kArgsStride = 16;
 constexpr uint64_t kFineArgsOffset = 4 * kArgsStride;
 constexpr uint64_t kRebuildArgsBytes = 8 * kArgsStride;

@@ -7,7 +7,6 @@
 
 #define VISUAL_POLAR_PARAMS
 #include "../common/visual_polar.glsl"
-#include "phi_mip_levels.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -27,14 +26,12 @@ vec4 loadLevel(uint level, ivec2 p) {
 }
 
 // Dispatched indirectly by unwarp_lookup.comp (mode 2): x covers the columns the fine mapping
-// reads (from column 0), z is the eye.
+// reads (from column 0), z is the eye; a level the mapping never reads gets no groups (P5 §3.4:
+// at reduction 0.61 and a centre gaze only level 1 is built).
 void main() {
     ivec2 size = textureSize(color, 0);
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     uint eyes = clamp(vp.grid.z, 1u, 2u);
-    // P5 §3.4: levels the mapping never reads are not built (at reduction 0.61, 256x256 and a
-    // centre gaze only level 1 is read).
-    if (pc.level > highestLevelRead(eyes)) return;
     uint eye = min(gl_WorkGroupID.z, eyes - 1u);
     VisualPolarMap m = vpMapOfEye(eye);  // its own staircase phase (P5 §3.3)
     uint column = uint(p.x);

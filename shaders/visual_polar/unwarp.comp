@@ -78,7 +78,7 @@ vec4 bilinear(VisualPolarMap m, uint eye, vec2 rt, uint level) {
 // Two dispatches (one pipeline each): the full-screen one samples level 0 only, the fine one
 // (indirect, over each eye's box of pixels with L > 0, from unwarp_lookup.comp) redoes those
 // pixels trilinearly and overwrites them. At the default reduction that box is the fovea; the
-// level choice and the second level's blend cost ~40 % of the full-screen dispatch on llvmpipe,
+// level choice and the second level's blend cost ~45 % of the full-screen dispatch on llvmpipe,
 // which runs both sides of every branch (docs/passes/Unwarp.md "Cost").
 void main() {
 #ifdef UNWARP_FINE

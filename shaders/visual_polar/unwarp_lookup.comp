@@ -6,10 +6,11 @@
 // writes the group counts of the rebuild: all groups when it changed (or the cache is off), none
 // otherwise.
 // mode 1 is that rebuild, dispatched indirectly, so a frame with an unchanged key runs none of
-// this math; it also grows each eye's box of pixels with L > 0, and mode 2 (one thread, every
-// frame) turns the boxes into the group counts of unwarp.comp's fine dispatch and of the phi mip
-// levels (none for a level it never reads, phi_mip_levels.glsl; only the columns it reads) (on lavapipe a per-pixel `if (stale)` would not: llvmpipe executes both sides of a
-// branch under a lane mask; docs/passes/Unwarp.md "Cost").
+// this math (on lavapipe a per-pixel `if (stale)` would: llvmpipe executes both sides of a
+// branch under a lane mask; docs/passes/Unwarp.md "Cost"). The rebuild also grows each eye's box
+// of pixels with L > 0; mode 2 (one thread, every frame) turns the boxes into the group counts of
+// unwarp.comp's fine dispatch and of the phi mip levels (only the columns the fine dispatch
+// reads; none for a level it never reads, phi_mip_levels.glsl).
 #extension GL_GOOGLE_include_directive : require
 
 #include "../common/camera.glsl"
@@ -32,7 +33,7 @@ layout(std430) buffer unwarp_rebuild {
     uvec4 mipGroups[3];
     uvec4 fineGroups;
     uvec4 fineBox[2];
-    uint fineColumn[4];
+    uint fineColumn[2];
 };
 
 layout(push_constant) uniform Params {
