@@ -64,9 +64,15 @@ std::unique_ptr<OIIO::ImageInput> openImage(const std::filesystem::path& path) {
 
 }  // namespace
 
-ImageRGBA readImage(const std::filesystem::path& path) {
+ImageRGBA readImage(const std::filesystem::path& path, uint64_t maxPixels) {
     auto in = openImage(path);
     const OIIO::ImageSpec& spec = in->spec();
+    const uint64_t pixels = uint64_t(spec.width) * uint64_t(spec.height);  // both > 0: openImage
+    if (maxPixels > 0 && pixels > maxPixels)
+        throw InputError(path.string(), "",
+                         "image is " + std::to_string(spec.width) + "x" +
+                             std::to_string(spec.height) + ", more than the " +
+                             std::to_string(maxPixels) + " pixels allowed here");
     ImageRGBA image;
     image.width = uint32_t(spec.width);
     image.height = uint32_t(spec.height);

@@ -27,8 +27,9 @@ void writePng(const std::filesystem::path& path, const ImageRGBA& image,
               PngEncoding encoding = PngEncoding::Srgb);
 // Reads any format OIIO knows as RGBA float (missing channels: 0, alpha 1), alpha as stored
 // (a PNG's colour is not premultiplied by its alpha).
-// Throws InputError naming the file when it cannot be read.
-ImageRGBA readImage(const std::filesystem::path& path);
+// Throws InputError naming the file when it cannot be read, or when `maxPixels` > 0 and the
+// image has more pixels than that (checked on the header, before any pixel is allocated).
+ImageRGBA readImage(const std::filesystem::path& path, uint64_t maxPixels = 0);
 // readImage with channel selection: `channels` (at most 4) name the file's channels read as
 // r, g, b, a (missing alpha 1, missing g/b 0; one channel is replicated to r, g, b); empty = as
 // readImage. An unknown name is an InputError naming the file and listing its channels.

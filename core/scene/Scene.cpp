@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/scene/Environment.h"
 #include "core/scene/SceneFeatures.h"
 
 namespace fovea::scene {
@@ -31,6 +32,15 @@ uint32_t Scene::features() const {
         }
     }
     if (!lights.empty()) bits |= kScenePunctual;
+    if (environment) {
+        bool emits = false;
+        for (const glm::vec3& c : environment->radiance)
+            if (c != glm::vec3(0.0f)) {
+                emits = true;
+                break;
+            }
+        if (emits) bits |= kSceneEnvironment;
+    }
     return bits;
 }
 
@@ -56,8 +66,10 @@ CameraDesc Scene::defaultCamera() const {
         if (length > 0.0f && std::isfinite(length)) {
             direction = d / length;
             const glm::vec3 u = cameras.front().up;
-            if (glm::length(glm::cross(u, direction)) > 1e-3f) up = glm::normalize(u);
-            else up = std::abs(direction.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, -1);
+            if (glm::length(glm::cross(u, direction)) > 1e-3f)
+                up = glm::normalize(u);
+            else
+                up = std::abs(direction.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, -1);
         }
     }
     camera.position = center - direction * distance;

@@ -6,10 +6,13 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace fovea::scene {
+
+struct EnvironmentMap;  // core/scene/Environment.h
 
 struct Bounds {
     glm::vec3 min{std::numeric_limits<float>::max()};
@@ -93,6 +96,9 @@ struct Scene {
     std::vector<CameraDesc> cameras;    // from the file; may be empty
     std::vector<std::string> warnings;  // broken entries nothing uses, ignored optional extensions
     Bounds bounds;                      // of mesh.positions
+    // Radiance from infinitely far away (--env); null = none (misses see black). Shared: the
+    // map can be large and scenes are copied (test rigs, per-run setup).
+    std::shared_ptr<const EnvironmentMap> environment;
 
     // SceneFeature bits (core/scene/SceneFeatures.h) this scene provides.
     uint32_t features() const;

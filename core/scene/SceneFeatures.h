@@ -10,14 +10,15 @@
 namespace fovea::scene {
 
 enum SceneFeature : uint32_t {
-    kSceneGeometry = 1u << 0,  // any triangles at all (a scene was loaded)
-    kSceneEmissive = 1u << 1,  // emissive triangles
-    kSceneTextures = 1u << 2,  // textured materials
-    kScenePunctual = 1u << 3,  // point/spot/directional lights
-    kSceneStereo = 1u << 4,    // a stereo camera rig
+    kSceneGeometry = 1u << 0,     // any triangles at all (a scene was loaded)
+    kSceneEmissive = 1u << 1,     // emissive triangles
+    kSceneTextures = 1u << 2,     // textured materials
+    kScenePunctual = 1u << 3,     // point/spot/directional lights
+    kSceneStereo = 1u << 4,       // a stereo camera rig
+    kSceneEnvironment = 1u << 5,  // an environment map that emits (--env)
 };
 
-// "geometry", "emissive", "textures", "punctual-lights", "stereo" for the set bits.
+// "geometry", "emissive", "textures", "punctual-lights", "stereo", "environment" for the set bits.
 std::vector<std::string> sceneFeatureNames(uint32_t mask);
 
 }  // namespace fovea::scene

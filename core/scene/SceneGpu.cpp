@@ -1,9 +1,12 @@
 #include "core/scene/SceneGpu.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
+#include <numbers>
 
+#include "core/scene/Environment.h"
 #include "core/scene/SceneFeatures.h"
 #include "core/util/DidYouMean.h"
 #include "core/util/Error.h"
@@ -18,10 +21,19 @@ namespace {
 // keeps a feature compiled in may declare the buffer without ever reading it.
 constexpr size_t kMinBufferBytes = 16;
 
-const std::vector<std::string> kResourceNames = {
-    "scene_info",          "scene_vertices",  "scene_triangles",    "scene_bvh",
-    "scene_bvh_triangles", "scene_materials", "scene_textures",     "scene_texels",
-    "scene_lights",        "scene_emitters",  "scene_vertex_colors"};
+const std::vector<std::string> kResourceNames = {"scene_info",
+                                                 "scene_vertices",
+                                                 "scene_triangles",
+                                                 "scene_bvh",
+                                                 "scene_bvh_triangles",
+                                                 "scene_materials",
+                                                 "scene_textures",
+                                                 "scene_texels",
+                                                 "scene_lights",
+                                                 "scene_emitters",
+                                                 "scene_vertex_colors",
+                                                 "scene_environment",
+                                                 "scene_environment_alias"};
 
 // COLOR_0 as two packUnorm2x16 words (RG, BA): 8 bytes a vertex; 16-bit unorm holds every
 // normalized unsigned short exactly and floats to 1.5e-5 (colours are in [0, 1], glTF §3.7.2.1).
@@ -63,6 +75,54 @@ layout::Light packLight(const Light& light) {
     const float cosInner = std::cos(light.innerConeAngle);
     out.spotScale = 1.0f / std::max(0.001f, cosInner - cosOuter);
     out.spotOffset = -cosOuter * out.spotScale;
+    return out;
+}
+
+// scene_environment's texel array and scene_environment_alias (layout::EnvironmentHeader);
+// both empty for a scene without an emitting environment.
+struct EnvironmentUpload {
+    std::vector<glm::vec4> texels;
+    std::vector<glm::uvec2> alias;  // the row table (height slots), then each row's columns
+};
+
+glm::uvec2 packAliasSlot(const AliasSlot& slot) {
+    return glm::uvec2(slot.alias, std::bit_cast<uint32_t>(float(slot.prob)));
+}
+
+EnvironmentUpload packEnvironment(const Scene& scene, const LightTable& lights, float radius,
+                                  layout::EnvironmentHeader& header) {
+    header = layout::EnvironmentHeader{};
+    EnvironmentUpload out;
+    if (!scene.environment) return out;
+    const EnvironmentMap& map = *scene.environment;
+    const EnvironmentDistribution distribution(map);
+    if (distribution.empty()) return out;  // black: lights nothing (loadEnvironment warned)
+    const size_t n = map.radiance.size();
+    out.texels.resize(n);
+    for (size_t k = 0; k < n; ++k)
+        out.texels[k] = glm::vec4(map.radiance[k], float(distribution.texelProbability()[k]));
+    out.alias.reserve(distribution.rows().size() + distribution.columns().size());
+    for (const AliasSlot& slot : distribution.rows()) out.alias.push_back(packAliasSlot(slot));
+    for (const AliasSlot& slot : distribution.columns()) out.alias.push_back(packAliasSlot(slot));
+    header.width = map.width;
+    header.height = map.height;
+    header.rotation = map.rotation;
+    // One-sample choice between the environment and the alias table of the other lights, by
+    // power in LightTable's units (Environment.h); 1 when nothing else emits. Each side keeps
+    // at least kMinLightSelect: power alone starves one of them (the environment's power grows
+    // with the scene's radius squared; under a 1000-unit ground plane a 0.36 m^2 lamp got
+    // 2e-8, which rounds to 0 in float, so next-event estimation never sampled it and
+    // emitterSampling = light lost its light entirely).
+    constexpr double kMinLightSelect = 0.1;
+    const double envPower = distribution.power(radius);
+    const double others = lights.entries().empty() ? 0.0 : lights.totalPower();
+    header.selectProbability =
+        float(others > 0.0 ? std::clamp(envPower / (envPower + others), kMinLightSelect,
+                                        1.0 - kMinLightSelect)
+                           : 1.0);
+    const double pi = std::numbers::pi;
+    header.pdfScale = float(double(map.width) * map.height / (2.0 * pi * pi));
+    header.luminanceIntegral = float(distribution.luminanceIntegral());
     return out;
 }
 
@@ -223,6 +283,9 @@ void SceneGpu::upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
     if (lights.emissiveTriangleCount() > 0) mFeatures |= kSceneEmissive;
     if (textured) mFeatures |= kSceneTextures;
     if (lights.punctualLightCount() > 0) mFeatures |= kScenePunctual;
+    const EnvironmentUpload environment =
+        packEnvironment(scene, lights, mInfo.radius, mEnvironment);
+    if (!environment.texels.empty()) mFeatures |= kSceneEnvironment;
     mInfo.features = mFeatures;
 
     mBuffers.clear();
@@ -237,6 +300,14 @@ void SceneGpu::upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
     addBuffer(context, "scene_lights", gpuLights.data(), bytesOf(gpuLights));
     addBuffer(context, "scene_emitters", lights.entries().data(), bytesOf(lights.entries()));
     addBuffer(context, "scene_vertex_colors", colors.data(), bytesOf(colors));
+    // The header and the texels in one buffer (the GLSL block's fixed part, then its array).
+    std::vector<glm::vec4> environmentData(sizeof(layout::EnvironmentHeader) / sizeof(glm::vec4));
+    std::memcpy(environmentData.data(), &mEnvironment, sizeof(mEnvironment));
+    environmentData.insert(environmentData.end(), environment.texels.begin(),
+                           environment.texels.end());
+    addBuffer(context, "scene_environment", environmentData.data(), bytesOf(environmentData));
+    addBuffer(context, "scene_environment_alias", environment.alias.data(),
+              bytesOf(environment.alias));
 }
 
 void SceneGpu::bind(gpu::ComputePipeline& pipeline) const {
@@ -249,7 +320,8 @@ std::vector<std::pair<std::string, std::string>> SceneGpu::defines() const {
     return {{"SCENE_HAS_TEXTURES", flag(kSceneTextures)},
             {"SCENE_HAS_EMISSIVE", flag(kSceneEmissive)},
             {"SCENE_HAS_PUNCTUAL", flag(kScenePunctual)},
-            {"SCENE_HAS_VERTEX_COLORS", mVertexColors ? "1" : "0"}};
+            {"SCENE_HAS_VERTEX_COLORS", mVertexColors ? "1" : "0"},
+            {"SCENE_HAS_ENVIRONMENT", flag(kSceneEnvironment)}};
 }
 
 const gpu::Buffer& SceneGpu::buffer(std::string_view name) const {

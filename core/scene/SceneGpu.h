@@ -74,7 +74,20 @@ struct Info {  // scene_info (uniform; std140 == std430 for this member order)
     glm::vec4 boundsMax;
 };
 
+// scene_environment (SCENE_HAS_ENVIRONMENT): this header, then one vec4 per texel (rgb radiance,
+// a = the texel's selection probability P_ij); scene_environment_alias: per texel uvec2(alias,
+// floatBitsToUint(keep probability)). core/scene/Environment.h has the mapping and the pdf.
+struct EnvironmentHeader {
+    uint32_t width, height;
+    float rotation;           // radians about +Y
+    float selectProbability;  // of picking the environment in next-event estimation
+    float pdfScale;           // W H / (2 pi^2): pdf(w) = P_ij * pdfScale / sin(theta)
+    float luminanceIntegral;  // for reports and tests
+    float pad[2];
+};
+
 static_assert(sizeof(Vertex) == 32);
+static_assert(sizeof(EnvironmentHeader) == 32);
 static_assert(sizeof(Triangle) == 16);
 static_assert(sizeof(TrianglePositions) == 48);
 static_assert(sizeof(Material) == 64);
@@ -112,6 +125,8 @@ public:
     std::vector<std::pair<std::string, std::string>> defines() const;
     // The mesh has per-vertex colours (scene_vertex_colors, SCENE_HAS_VERTEX_COLORS).
     bool hasVertexColors() const { return mVertexColors; }
+    // The uploaded environment (zeros without one; a black map is not uploaded).
+    const layout::EnvironmentHeader& environment() const { return mEnvironment; }
 
     // Throws RuntimeError (with did-you-mean) for a name not in resourceNames().
     const gpu::Buffer& buffer(std::string_view name) const;
@@ -135,6 +150,7 @@ private:
     BvhStats mBvhStats;
     bool mVertexColors = false;
     layout::Info mInfo{};
+    layout::EnvironmentHeader mEnvironment{};
     uint32_t mFeatures = 0;
 };
 

@@ -61,7 +61,10 @@ void GBufferPass::reflect(graph::Reflection& r) const {
         .doc("x roughness, y metallic");
     r.output("emission", vk::Format::eR16G16B16A16Sfloat)
         .sameAs("coords")
-        .doc("radiance emitted toward the camera at the first hit; a 1 = hit");
+        .doc(
+            "radiance emitted toward the camera at the first hit; a 1 = hit. On a miss with an "
+            "environment (`--env`): the environment's radiance in the ray's direction (the "
+            "background), a 0");
 }
 
 void GBufferPass::validate(const graph::ValidateContext& ctx) const {

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/sampling/SampleLayout.h"
+#include "core/scene/SceneFeatures.h"
 #include "core/scene/SceneGpu.h"
 #include "core/util/Error.h"
 #include "core/vk/Barriers.h"
@@ -129,6 +130,7 @@ void PathTracePass::compile(graph::CompileContext& ctx) {
                feature(defines, "SCENE_HAS_EMISSIVE", "emissive") + "," +
                feature(defines, "SCENE_HAS_PUNCTUAL", "punctual") + "," +
                feature(defines, "SCENE_HAS_TEXTURES", "textures") +
+               (scene->features() & scene::kSceneEnvironment ? ",environment" : "") +
                ",bounces=" + std::to_string(mMaxBounces) +
                ",primary=" + (mUseVisibility ? "gbuffer" : "own") +
                (mUseLayout ? ",layout" : ",spp=" + std::to_string(mSpp)) +

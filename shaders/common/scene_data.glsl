@@ -4,9 +4,10 @@
 // followed by a 4-byte scalar shares one 16-byte slot in std430, exactly like glm::vec3 + float.
 //
 // Compile with SceneGpu::defines(): SCENE_HAS_TEXTURES / SCENE_HAS_EMISSIVE / SCENE_HAS_PUNCTUAL
-// / SCENE_HAS_VERTEX_COLORS = 0 drop the buffers and code paths a scene does not need. Without
-// defines everything is on, which is valid for any scene (empty buffers are still bound; an
-// empty scene_vertex_colors reads as white, see sceneVertexColor).
+// / SCENE_HAS_VERTEX_COLORS / SCENE_HAS_ENVIRONMENT = 0 drop the buffers and code paths a scene
+// does not need. Without defines everything is on, which is valid for any scene (empty buffers
+// are still bound; an empty scene_vertex_colors reads as white, see sceneVertexColor; an empty
+// scene_environment has width 0 and emits nothing).
 #ifndef FOVEA_SCENE_DATA_GLSL
 #define FOVEA_SCENE_DATA_GLSL
 
@@ -21,6 +22,9 @@
 #endif
 #ifndef SCENE_HAS_VERTEX_COLORS
 #define SCENE_HAS_VERTEX_COLORS 1
+#endif
+#ifndef SCENE_HAS_ENVIRONMENT
+#define SCENE_HAS_ENVIRONMENT 1  // without one, scene_environment's width is 0: nothing emits
 #endif
 
 const uint kBvhInternalNode = 0xFFFFFFFFu;  // BvhNode.count of an internal node
@@ -84,7 +88,7 @@ struct SceneEmitter {
     float pdf;        // selection probability of this light (power / total power)
 };
 
-// Explicit bindings 16-25 and 27 (26 is camera.glsl's CameraInfo): the compiler's automatic numbering only numbers resources a shader
+// Explicit bindings 16-25 and 27-29 (26 is camera.glsl's CameraInfo): the compiler's automatic numbering only numbers resources a shader
 // uses, and leaves unused ones (a pass that never samples textures still declares
 // scene_texels) at binding 0, where they would collide. glslang reserves explicit slots first, so
 // a pass's own auto-numbered resources flow around this range.
@@ -146,6 +150,28 @@ layout(std430, binding = 24) readonly buffer SceneLights {
 layout(std430, binding = 25) readonly buffer SceneEmitters {
     SceneEmitter emitters[];
 } scene_emitters;
+#endif
+
+#if SCENE_HAS_ENVIRONMENT
+// Environment light (core/scene/Environment.h, layout::EnvironmentHeader): per texel rgb
+// radiance and a = its selection probability P_ij; the alias tables (rows, then each row's
+// columns) draw a texel in O(1). Functions: common/environment.glsl.
+layout(std430, binding = 28) readonly buffer SceneEnvironment {
+    uint width;
+    uint height;
+    float rotation;           // radians about +Y
+    float selectProbability;  // of the environment in next-event estimation
+    float pdfScale;           // W H / (2 pi^2)
+    float luminanceIntegral;
+    float pad0;
+    float pad1;
+    vec4 texels[];
+} scene_environment;
+layout(std430, binding = 29) readonly buffer SceneEnvironmentAlias {
+    // height row slots, then width column slots per row: x alias index (row, or column within
+    // the row), y floatBitsToUint(keep probability)
+    uvec2 alias[];
+} scene_environment_alias;
 #endif
 
 #if SCENE_HAS_VERTEX_COLORS

@@ -11,9 +11,22 @@
 #ifndef FOVEA_SCENE_SAMPLE_GLSL
 #define FOVEA_SCENE_SAMPLE_GLSL
 
+#include "environment.glsl"
 #include "scene_data.glsl"
 
 const float kSceneInfiniteDistance = 1e30;  // shadow-ray tMax of directional lights
+const uint kSceneEnvironmentLight = 0xFFFFFFFFu;  // SceneLightSample.light of the environment
+
+// The probability that next-event estimation samples the environment rather than the alias table
+// of the scene's other lights (SceneGpu: by power; 1 when nothing else emits, 0 without one).
+// Every pdf of those other lights is scaled by 1 - this (sceneSampleLight, sceneEmitterPdf).
+float sceneEnvironmentSelectProbability() {
+#if SCENE_HAS_ENVIRONMENT
+    return sceneHasEnvironment() ? scene_environment.selectProbability : 0.0;
+#else
+    return 0.0;
+#endif
+}
 
 // SCENE_LIGHT_SOLID_ANGLE 1 (PathTrace's lightSampling = solidAngle): a sampled emissive
 // triangle yields a direction uniform in the solid angle it subtends (Arvo 1995) instead of a
@@ -120,7 +133,8 @@ struct SceneLightSample {
     vec3 radiance;   // area: emitted radiance towards the point; punctual: intensity / d^2
     float pdf;       // see the contract above; > 0 whenever sceneSampleLight returns true
     bool isDelta;    // punctual light: no MIS, BSDF rays never hit it
-    uint light;      // the SceneEmitter.light value that was picked
+    uint light;      // the SceneEmitter.light value that was picked; kSceneEnvironmentLight for
+                     // the environment
 };
 
 #if SCENE_HAS_VERTEX_COLORS
@@ -248,7 +262,8 @@ vec3 sceneEmission(uint material, vec2 uv, bool frontFacing) {
 // Solid-angle pdf with which sceneSampleLight produces the direction from `origin` to the
 // point `lightPosition` on emissive triangle `triangle` (for MIS after a BSDF ray hit it).
 // selection * d^2 / (area * |cos|) with selection = density * area / totalPower: area cancels.
-float sceneEmitterPdf(uint triangle, vec3 origin, vec3 lightPosition) {
+// sceneTableEmitterPdf: within the alias table; sceneEmitterPdf: times the table's selection.
+float sceneTableEmitterPdf(uint triangle, vec3 origin, vec3 lightPosition) {
 #if SCENE_HAS_EMISSIVE
     SceneMaterial m = scene_materials.materials[scene_triangles.triangles[triangle].material];
     if (m.emissive.w <= 0.0 || !(scene_info.totalPower > 0.0)) return 0.0;
@@ -273,6 +288,11 @@ float sceneEmitterPdf(uint triangle, vec3 origin, vec3 lightPosition) {
 #else
     return 0.0;
 #endif
+}
+
+float sceneEmitterPdf(uint triangle, vec3 origin, vec3 lightPosition) {
+    return (1.0 - sceneEnvironmentSelectProbability()) *
+           sceneTableEmitterPdf(triangle, origin, lightPosition);
 }
 
 #if SCENE_HAS_PUNCTUAL
@@ -307,16 +327,10 @@ vec3 scenePunctualIncident(uint index, vec3 position, out vec3 direction, out fl
 }
 #endif
 
-// Picks a light (alias table: u.x column, u.y coin) and, for a triangle, a uniform point on it
-// (u.zw). Returns false when the scene has no lights or the sample carries nothing (back face of
-// a one-sided emitter, the point on the light itself, grazing angle).
-bool sceneSampleLight(vec3 position, vec4 u, out SceneLightSample s) {
-    s.direction = vec3(0.0, 0.0, 1.0);
-    s.distance = 0.0;
-    s.radiance = vec3(0.0);
-    s.pdf = 0.0;
-    s.isDelta = false;
-    s.light = 0u;
+// Picks a light of the alias table (u.x column, u.y coin) and, for a triangle, a uniform point
+// on it (u.zw); s.pdf within the table. False when the table is empty or the sample carries
+// nothing (back face of a one-sided emitter, the point on the light itself, grazing angle).
+bool sceneSampleTableLight(vec3 position, vec4 u, inout SceneLightSample s) {
 #if SCENE_HAS_EMISSIVE || SCENE_HAS_PUNCTUAL
     uint n = scene_info.emitterCount;
     if (n == 0u) return false;
@@ -398,6 +412,35 @@ bool sceneSampleLight(vec3 position, vec4 u, out SceneLightSample s) {
 #else
     return false;
 #endif
+}
+
+// Picks the environment (with sceneEnvironmentSelectProbability, decided by the coin u.y, which is
+// then rescaled to [0, 1) for the chosen strategy) or a light of the alias table. Returns false
+// when nothing emits or the sample carries nothing. The environment's directions reach
+// kSceneInfiniteDistance; its pdf is a solid-angle pdf (MIS against BRDF rays that escape, with
+// sceneEnvironmentPdf).
+bool sceneSampleLight(vec3 position, vec4 u, out SceneLightSample s) {
+    s.direction = vec3(0.0, 0.0, 1.0);
+    s.distance = 0.0;
+    s.radiance = vec3(0.0);
+    s.pdf = 0.0;
+    s.isDelta = false;
+    s.light = 0u;
+    float env = sceneEnvironmentSelectProbability();
+    if (env > 0.0) {
+        if (u.y < env) {
+            // env > 0 here; the quotient is < 1 up to rounding: clamped below 1 like the others.
+            u.y = min(u.y / env, 0.99999994);
+            s.light = kSceneEnvironmentLight;
+            s.distance = kSceneInfiniteDistance;
+            return sceneSampleEnvironment(u, s.direction, s.radiance, s.pdf);
+        }
+        // u.y >= env and u.y < 1, so env < 1 here: no division by zero.
+        u.y = min((u.y - env) / (1.0 - env), 0.99999994);
+    }
+    if (!sceneSampleTableLight(position, u, s)) return false;
+    s.pdf *= 1.0 - env;
+    return s.pdf > 0.0;
 }
 
 #endif

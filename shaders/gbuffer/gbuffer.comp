@@ -94,7 +94,15 @@ void main() {
     uint flags = kFlagTraced | (eye << 8);
     BvhHit hit;
     if (!bvhClosestHit(origin, dir, 0.0, kSceneInfiniteDistance, hit)) {
-        writeEmpty(p, uvec4(0u, 0u, 0u, flags));
+        if (!sceneHasEnvironment()) {
+            writeEmpty(p, uvec4(0u, 0u, 0u, flags));
+            return;
+        }
+        // The background: the environment's radiance as `emission` (Remodulate and the
+        // denoisers add it back), the ray direction (octahedral) in visibility.yz for PathTrace.
+        vec2 oct = octahedralEncode(dir);
+        writeEmpty(p, uvec4(0u, floatBitsToUint(oct.x), floatBitsToUint(oct.y), flags));
+        imageStore(emission, p, toHalf(vec4(sceneEnvironmentRadiance(dir), 0.0)));
         return;
     }
 

@@ -5,11 +5,12 @@
 // point on a random light), then `maxBounces` (default 1) BRDF-sampled indirect rays, each
 // followed by next-event estimation at its hit. Emission found by an indirect ray is combined
 // with next-event estimation by multiple importance sampling (Veach & Guibas 1995, Veach 1997
-// §9.2, power heuristic beta = 2). At the last vertex (PATHTRACE_LAST_MIS, parameter
-// lastBounceMis) one more BRDF-sampled ray looks for an emitter only and is MIS-weighted against
-// that vertex's shadow ray, which bounds the estimate where the light sample's area-to-solid-
-// angle factor d^2 / (A cos) explodes (points next to an emitter); without it the last shadow
-// ray takes full weight (docs/passes/PathTrace.md "Emission and MIS").
+// §9.2, power heuristic beta = 2); so is the environment a BRDF ray finds when it escapes
+// (pbrt-v3 §14.2.4's importance-sampled infinite light). At the last vertex (PATHTRACE_LAST_MIS,
+// parameter lastBounceMis) one more BRDF-sampled ray looks for an emitter only and is
+// MIS-weighted against that vertex's shadow ray, which bounds the estimate where the light
+// sample's area-to-solid-angle factor d^2 / (A cos) explodes (points next to an emitter);
+// without it the last shadow ray takes full weight (docs/passes/PathTrace.md "Emission and MIS").
 //
 // Random numbers: a stateless hash of (pixel, frame, sample, bounce, dimension, graph seed)
 // (shaders/common/random.glsl), so reruns are bit-identical on one driver.
@@ -162,6 +163,15 @@ float brdfHitWeight(float brdfPdfValue, float lightPdf) {
 #endif
 }
 
+// Light a BRDF-sampled ray finds when it leaves the scene: the environment, weighted against its
+// next-event sample (sceneEnvironmentPdf includes the environment's selection probability).
+vec3 escapedRadiance(vec3 wi, float brdfPdfValue) {
+    if (!sceneHasEnvironment()) return vec3(0.0);
+    vec3 le = sceneEnvironmentRadiance(wi);
+    if (maxComponent(le) <= 0.0) return vec3(0.0);
+    return le * brdfHitWeight(brdfPdfValue, sceneEnvironmentPdf(wi));
+}
+
 vec3 clampContribution(vec3 c) {
     if (pc.clampIndirect <= 0.0) return c;
     float m = maxComponent(c);
@@ -231,6 +241,15 @@ vec3 nextEvent(Vertex v, uint vertex, bool last) {
     return f * cosS * ls.radiance * (w / ls.pdf);  // ls.pdf > 0 when sampleLight succeeds
 }
 
+// Emission found by a ray leaving vertex `depth` (already weighted): light after one reflection
+// is direct, later light indirect (clamped when clampIndirect is set).
+void addFound(inout PathResult r, int depth, vec3 e) {
+    if (depth == 0)
+        r.direct += e;
+    else
+        r.indirect += clampContribution(e);
+}
+
 PathResult tracePath(uvec2 pixel, bool haveVisibility, uvec4 vis) {
     PathResult r;
     r.direct = vec3(0.0);
@@ -246,7 +265,16 @@ PathResult tracePath(uvec2 pixel, bool haveVisibility, uvec4 vis) {
     vec2 bary;
     vec3 dir;
     if (haveVisibility) {
-        if ((vis.w & kVisHit) == 0u || vis.x == 0u) return r;  // the GBuffer saw the sky
+        if ((vis.w & kVisHit) == 0u || vis.x == 0u) {
+            // The GBuffer saw the sky: with an environment it left the ray's direction in
+            // visibility.yz (octahedral), the background seen through this pixel.
+            if (sceneHasEnvironment()) {
+                r.emission = sceneEnvironmentRadiance(
+                    octahedralDecode(vec2(uintBitsToFloat(vis.y), uintBitsToFloat(vis.z))));
+                r.direct = r.emission;
+            }
+            return r;
+        }
         triangle = vis.x - 1u;
         bary = vec2(uintBitsToFloat(vis.y), uintBitsToFloat(vis.z));
         SceneSurface s = sceneSurface(triangle, bary);
@@ -262,7 +290,11 @@ PathResult tracePath(uvec2 pixel, bool haveVisibility, uvec4 vis) {
         cameraRay(eye, vec2(pixel) + jitter, origin, dir);
         BvhHit hit;
         COUNT_RAY(0);
-        if (!bvhClosestHit(origin, dir, 0.0, kInfinity, hit)) return r;  // no environment
+        if (!bvhClosestHit(origin, dir, 0.0, kInfinity, hit)) {
+            r.emission = sceneEnvironmentRadiance(dir);  // the background (0 without one)
+            r.direct = r.emission;
+            return r;
+        }
         triangle = hit.triangle;
         bary = hit.barycentrics;
     }
@@ -301,7 +333,11 @@ PathResult tracePath(uvec2 pixel, bool haveVisibility, uvec4 vis) {
         BvhHit hit;
 #if PATHTRACE_LAST_RAY
         COUNT_RAY(last ? 4 : 2);
-        if (!bvhClosestHit(p, wi, 0.0, kInfinity, hit)) break;
+        if (!bvhClosestHit(p, wi, 0.0, kInfinity, hit)) {
+            vec3 e = throughput * escapedRadiance(wi, brdfPdfValue);
+            addFound(r, depth, e);
+            break;
+        }
         if (depth == 0 && !last) r.hitT = hit.t;  // hit_distance: the first *indirect* ray
         if (last) {
             // Only the emission this ray finds counts: the path ends here (no shading of the
@@ -311,16 +347,17 @@ PathResult tracePath(uvec2 pixel, bool haveVisibility, uvec4 vis) {
             if (maxComponent(le) > 0.0) {
                 float lightPdf = sceneEmitterPdf(hit.triangle, p, hs.position);
                 vec3 e = throughput * le * brdfHitWeight(brdfPdfValue, lightPdf);
-                if (depth == 0)
-                    r.direct += e;
-                else
-                    r.indirect += clampContribution(e);
+                addFound(r, depth, e);
             }
             break;
         }
 #else
         COUNT_RAY(2);
-        if (!bvhClosestHit(p, wi, 0.0, kInfinity, hit)) break;
+        if (!bvhClosestHit(p, wi, 0.0, kInfinity, hit)) {
+            vec3 e = throughput * escapedRadiance(wi, brdfPdfValue);
+            addFound(r, depth, e);
+            break;
+        }
         if (depth == 0) r.hitT = hit.t;
 #endif
         Vertex next = makeVertex(hit.triangle, hit.barycentrics, wi);
@@ -328,10 +365,7 @@ PathResult tracePath(uvec2 pixel, bool haveVisibility, uvec4 vis) {
             // The light-sampling strategy could have produced this direction too (MIS).
             float lightPdf = sceneEmitterPdf(hit.triangle, p, next.position);
             vec3 e = throughput * next.emitted * brdfHitWeight(brdfPdfValue, lightPdf);
-            if (depth == 0)
-                r.direct += e;
-            else
-                r.indirect += clampContribution(e);
+            addFound(r, depth, e);
         }
         v = next;
     }
