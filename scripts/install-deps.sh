@@ -9,6 +9,8 @@ PACKAGES=(
   libglm-dev libglfw3-dev libtinygltf-dev libstb-dev libembree-dev libopenimageio-dev openimageio-tools
   nlohmann-json3-dev libcli11-dev libimgui-dev libgtest-dev libgmock-dev libeigen3-dev
   xvfb xauth
+  # CC0 HDR environment maps (studiolights/world/*.exr) for the --env tests (docs/scenes.md)
+  blender-data
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

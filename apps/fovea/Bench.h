@@ -44,6 +44,9 @@ struct BenchSpec {
     std::string scene, camera;  // camera: a camera path JSON, "" = the scene's still camera
     bool stereo = false;
     bool sun = false;  // `sun`: --sun for every graph and the reference (glTF files without lights)
+    // `env`: --env, --env-intensity, --env-rotation for every graph and the reference.
+    std::string env;
+    float envIntensity = 1.0f, envRotation = 0.0f;
     uint32_t width = 0, height = 0, frames = 0, warmup = 1;
     // Run seeds: `seed` (one) or `seeds` (several: every graph runs once per seed, the errors are
     // means over the seeds with their standard error and paired differences, BenchSeeds.cpp).

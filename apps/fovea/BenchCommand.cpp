@@ -46,6 +46,9 @@ SceneOptions sceneOptions(const BenchSpec& spec) {
     s.stereo = spec.stereo;
     s.mono = !spec.stereo;  // the bench decides, not the graphs' defaults
     s.sun = spec.sun;
+    s.env = spec.env;
+    s.envIntensity = spec.envIntensity;
+    s.envRotation = spec.envRotation;
     s.ignoreGraphCamera = true;  // likewise the camera: the bench's path, else a still one
     return s;
 }
@@ -87,12 +90,14 @@ fs::path prepareReference(const BenchSpec& spec, const OutputFolder& out, const 
         return ref.file;
     }
     graph::GraphDesc desc = loadBenchGraph(spec, ref.graph, ref.sets, "/reference/render");
-    const json key = {{"graph", ref.graph},    {"set", ref.sets},
-                      {"output", ref.output},  {"spp", ref.spp},
-                      {"scene", spec.scene},   {"camera", spec.camera},
-                      {"stereo", spec.stereo}, {"size", {spec.width, spec.height}},
-                      {"seed", seed},          {"frames", spec.frames},
-                      {"sun", spec.sun},       {"warmup", spec.warmup}};
+    json key = {{"graph", ref.graph},    {"set", ref.sets},
+                {"output", ref.output},  {"spp", ref.spp},
+                {"scene", spec.scene},   {"camera", spec.camera},
+                {"stereo", spec.stereo}, {"size", {spec.width, spec.height}},
+                {"seed", seed},          {"frames", spec.frames},
+                {"sun", spec.sun},       {"warmup", spec.warmup}};
+    // Only with an environment: the keys of references cached before `env` existed stay valid.
+    if (!spec.env.empty()) key["env"] = environmentKey(sceneOptions(spec));
     const fs::path refDir = dir / folder;
     const bool moving = !spec.camera.empty();
     const fs::path result = moving ? refDir : refDir / "reference.exr";
@@ -369,6 +374,7 @@ int benchCommand(const BenchOptions& o) {
         {"warmup", spec.warmup},
         {"seed", spec.seeds.front()},
         {"reference", referenceInfo}};
+    if (!spec.env.empty()) header["env"] = environmentKey(sceneOptions(spec));
     if (spec.seeds.size() > 1) header["seeds"] = spec.seeds;
     if (!noiseFloor.empty()) header["noise_floor"] = noiseFloor;
     if (layers)

@@ -2,6 +2,7 @@
 // pointer of the offending value; paths are relative to the bench file's folder.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -43,6 +44,16 @@ public:
             fail(pointer, "expected an integer in [" + std::to_string(min) + ", " +
                               std::to_string(max) + "]");
         return uint32_t(j.get<int64_t>());
+    }
+    // A finite number in [min, max].
+    double number(const json& j, const std::string& pointer, double min, double max) const {
+        if (!j.is_number() || !std::isfinite(j.get<double>()) || j.get<double>() < min ||
+            j.get<double>() > max) {
+            char range[64];
+            std::snprintf(range, sizeof range, "[%g, %g]", min, max);
+            fail(pointer, std::string("expected a finite number in ") + range);
+        }
+        return j.get<double>();
     }
     std::vector<std::string> strings(const json& j, const std::string& pointer) const {
         if (!j.is_array()) fail(pointer, "expected an array of strings");
@@ -95,6 +106,25 @@ BenchReference parseReference(const Reader& r, const json& j) {
     return ref;
 }
 
+// `env`: "sky.exr" or {"file": "sky.exr", "intensity": 1, "rotation": 0} (--env and its options;
+// the file relative to the bench file). The ranges are those of the command-line options.
+void parseEnvironment(const Reader& r, const json& j, BenchSpec& spec) {
+    if (j.is_string()) {
+        spec.env = r.path(j, "/env", "environment map");
+        return;
+    }
+    if (!j.is_object())
+        r.fail("/env",
+               "expected the environment map's file name or {\"file\": ..., "
+               "\"intensity\": ..., \"rotation\": ...}");
+    r.keys(j, "/env", {"file", "intensity", "rotation"});
+    spec.env = r.path(r.need(j, "/env", "file"), "/env/file", "environment map");
+    if (j.contains("intensity"))
+        spec.envIntensity = float(r.number(j["intensity"], "/env/intensity", 0.0, 1e9));
+    if (j.contains("rotation"))
+        spec.envRotation = float(r.number(j["rotation"], "/env/rotation", -36000.0, 36000.0));
+}
+
 // `seeds`: the alternative to `seed`, every graph runs once per seed (BenchSeeds.cpp).
 std::vector<uint64_t> parseSeeds(const Reader& r, const json& j) {
     if (j.contains("seed"))
@@ -122,9 +152,9 @@ BenchSpec parseBenchFile(const fs::path& file) {
     if (j.is_discarded()) throw InputError(name, "", "not valid JSON");
     Reader r(name);
     r.keys(j, "",
-           {"version", "name", "description", "scene", "camera", "size", "stereo", "sun", "frames",
-            "warmup", "seed", "seeds", "output", "reference", "noise_floor", "also_against",
-            "layers", "graphs"});
+           {"version", "name", "description", "scene", "camera", "size", "stereo", "sun", "env",
+            "frames", "warmup", "seed", "seeds", "output", "reference", "noise_floor",
+            "also_against", "layers", "graphs"});
     BenchSpec spec;
     spec.file = name;
     if (r.count(r.need(j, "", "version"), "/version", 1, 1) != 1) r.fail("/version", "expected 1");
@@ -144,6 +174,7 @@ BenchSpec parseBenchFile(const fs::path& file) {
         if (!j["sun"].is_boolean()) r.fail("/sun", "expected true or false");
         spec.sun = j["sun"].get<bool>();
     }
+    if (j.contains("env")) parseEnvironment(r, j["env"], spec);
     spec.frames = r.count(r.need(j, "", "frames"), "/frames", 1, 1u << 20);
     if (j.contains("warmup")) spec.warmup = r.count(j["warmup"], "/warmup", 0, 1u << 20);
     if (spec.warmup >= spec.frames)

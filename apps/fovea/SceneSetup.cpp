@@ -6,6 +6,7 @@
 
 #include "apps/fovea/CliChecks.h"
 #include "core/graph/Pass.h"
+#include "core/scene/Environment.h"
 #include "core/scene/LightTable.h"
 #include "core/scene/SceneGpu.h"
 #include "core/scene/SceneLoader.h"
@@ -78,6 +79,29 @@ void addSceneOptions(CLI::App& cmd, SceneOptions& o) {
     cmd.add_flag("--sun", o.sun,
                  "add a white directional light (3 lux from above) to the scene, e.g. for glTF "
                  "files without lights");
+    cmd.add_option("--env", o.env,
+                   "environment light: an equirectangular (2:1 latitude-longitude) HDR image, EXR "
+                   "or Radiance .hdr, lighting the scene from all around and seen as its "
+                   "background (docs/scenes.md)")
+        ->check(nonEmptyValue());
+    cmd.add_option("--env-intensity", o.envIntensity, "scale of the --env radiance (default 1)")
+        ->check(finiteRange(0.0, 1e9));
+    cmd.add_option("--env-rotation", o.envRotation,
+                   "rotation of the --env map about the up axis (+Y), degrees (default 0: the "
+                   "image centre faces +X)")
+        ->check(finiteRange(-36000.0, 36000.0));
+}
+
+nlohmann::json environmentKey(const SceneOptions& o) {
+    if (o.env.empty()) return nullptr;
+    nlohmann::json j = {
+        {"file", o.env}, {"intensity", o.envIntensity}, {"rotation_degrees", o.envRotation}};
+    std::error_code ec;
+    const auto bytes = fs::file_size(o.env, ec);
+    if (!ec) j["bytes"] = bytes;
+    const auto written = fs::last_write_time(o.env, ec);
+    if (!ec) j["modified"] = int64_t(written.time_since_epoch().count());
+    return j;
 }
 
 std::array<glm::vec2, scene::kMaxEyes> parseGaze(const std::string& text) {
@@ -140,11 +164,23 @@ RunScene::RunScene(const SceneOptions& o, const graph::GraphDesc& desc) {
         sun.intensity = 3.0f;
         mScene->lights.push_back(sun);
     }
-    if (!(mScene->features() & (graph::kSceneEmissive | graph::kScenePunctual)))
+    if (!o.env.empty()) {
+        if (o.env.rfind("builtin:", 0) == 0)
+            throw InputError("--env", "", "expected an image file, got '" + o.env + "'");
+        mScene->environment = std::make_shared<scene::EnvironmentMap>(
+            scene::loadEnvironment(o.env, o.envIntensity, o.envRotation, mScene->warnings));
+        mEnvironment = environmentKey(o);
+        mEnvironment["size"] = {mScene->environment->width, mScene->environment->height};
+    } else if (o.envIntensity != 1.0f || o.envRotation != 0.0f) {
+        throw InputError(o.envIntensity != 1.0f ? "--env-intensity" : "--env-rotation", "",
+                         "has no effect without --env");
+    }
+    if (!(mScene->features() &
+          (graph::kSceneEmissive | graph::kScenePunctual | graph::kSceneEnvironment)))
         mScene->warnings.push_back(
             "the scene has no light (no emissive material, no "
-            "KHR_lights_punctual light): path-traced images will be black; "
-            "--sun adds a directional light");
+            "KHR_lights_punctual light, no --env): path-traced images will be black; "
+            "--sun adds a directional light, --env an environment");
     if (!droppedCamera.empty())
         mScene->warnings.push_back("the graph's defaults.camera '" + droppedCamera +
                                    "' belongs to its default scene '" + defaultScene +
@@ -236,6 +272,7 @@ nlohmann::json RunScene::json() const {
                         {"stereo", mRig.stereo},
                         {"load_ms", mLoadMs},
                         {"warnings", mScene->warnings}};
+    if (!mEnvironment.is_null()) j["environment"] = mEnvironment;
     if (mGpu) {
         const auto& bvh = mGpu->bvhStats();
         j["upload_ms"] = mUploadMs;  // BVH build + light table + upload

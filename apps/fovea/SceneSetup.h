@@ -36,6 +36,13 @@ struct SceneOptions {
     // Adds a white directional "sun" (3 lux, from above and slightly in front) to the scene:
     // many glTF files carry no light, and path tracing them without one renders black.
     bool sun = false;
+    // --env: an equirectangular HDR image lighting the scene from infinitely far away, seen by
+    // rays that leave it (docs/scenes.md "Environment light"); relative to the working
+    // directory (the bench resolves its `env` key against the bench file). --env-intensity
+    // scales it; --env-rotation turns it about +Y, in degrees. Combines with --sun.
+    std::string env;
+    float envIntensity = 1.0f;
+    float envRotation = 0.0f;
     // fovea bench: ignore the graph's defaults.camera (the bench file names the camera, and
     // without one the scene's still camera is used for every graph).
     bool ignoreGraphCamera = false;
@@ -48,6 +55,11 @@ inline constexpr const char* kFrameCamera = "frame";
 
 // Adds the options above to a subcommand.
 void addSceneOptions(CLI::App& cmd, SceneOptions& o);
+
+// What identifies --env and its options (file, intensity, rotation, and the file's size and
+// modification time, so that a changed file under the same name is noticed): report.json's
+// scene.environment and the bench's reference cache key. Null without --env.
+nlohmann::json environmentKey(const SceneOptions& o);
 
 // Parses "x,y" or "xl,yl,xr,yr" in [0,1]; errors name --gaze.
 std::array<glm::vec2, scene::kMaxEyes> parseGaze(const std::string& text);
@@ -87,7 +99,8 @@ public:
 
 private:
     std::string mSpec = "none";
-    std::string mCameraSource;  // "path:<file>", "gltf:<n>", "default"
+    std::string mCameraSource;    // "path:<file>", "gltf:<n>", "default"
+    nlohmann::json mEnvironment;  // environmentKey() + the map's size; null without --env
     std::unique_ptr<scene::Scene> mScene;
     std::unique_ptr<scene::SceneGpu> mGpu;
     std::unique_ptr<scene::Bvh> mBvh;  // the uploaded BVH, for probeView
