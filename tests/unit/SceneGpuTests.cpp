@@ -285,9 +285,8 @@ TEST_F(SceneGpuTest, BuffersFeaturesAndDefines) {
     EXPECT_EQ(full.features(), uint32_t(graph::kSceneGeometry | graph::kSceneEmissive |
                                         graph::kSceneTextures | graph::kScenePunctual));
     for (const auto& [name, value] : full.defines())  // no COLOR_0, no environment
-        EXPECT_EQ(value, name == "SCENE_HAS_VERTEX_COLORS" || name == "SCENE_HAS_ENVIRONMENT"
-                             ? "0"
-                             : "1")
+        EXPECT_EQ(value,
+                  name == "SCENE_HAS_VERTEX_COLORS" || name == "SCENE_HAS_ENVIRONMENT" ? "0" : "1")
             << name;
     EXPECT_EQ(full.info().emitterCount, 2u);
     EXPECT_EQ(full.buffer("scene_texels").size(), (15u + 16u + 1u) * 4u);
