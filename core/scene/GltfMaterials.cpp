@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "core/scene/GltfJson.h"
 #include "core/scene/GltfLayout.h"
 #include "core/scene/GltfTextures.h"
+#include "core/scene/GltfUsage.h"
 #include "core/util/Error.h"
 
 namespace fovea::scene::gltf {
@@ -13,6 +15,38 @@ namespace {
 
 float unit(double v) {
     return float(std::clamp(v, 0.0, 1.0));
+}
+
+// glTF 2.0 §5.26 sampler: wrap modes by their GL enums; magFilter NEAREST (9728) samples the
+// nearest texel (TextureView.h: minFilter is not read, fovea keeps no mip maps). Values were
+// validated (GltfValidate); anything else keeps the default.
+TextureSampler samplerOf(const tinygltf::Sampler& s) {
+    auto wrap = [](int mode) {
+        switch (mode) {
+            case 33071:
+                return TextureWrap::ClampToEdge;
+            case 33648:
+                return TextureWrap::MirroredRepeat;
+            default:
+                return TextureWrap::Repeat;  // 10497, the default
+        }
+    };
+    TextureSampler out;
+    out.wrapS = wrap(s.wrapS);
+    out.wrapT = wrap(s.wrapT);
+    out.nearest = s.magFilter == 9728;
+    return out;
+}
+
+// KHR_texture_transform of a texture info (identity without the extension; values validated).
+TextureTransform textureTransformOf(const JsonView& info) {
+    TextureTransform t;
+    JsonView ext = info.object("extensions").object("KHR_texture_transform");
+    if (!ext.isObject()) return t;
+    if (auto offset = ext.numbers("offset", 2)) t.offset = glm::vec2((*offset)[0], (*offset)[1]);
+    if (auto rotation = ext.number("rotation")) t.rotation = float(*rotation);
+    if (auto scale = ext.numbers("scale", 2)) t.scale = glm::vec2((*scale)[0], (*scale)[1]);
+    return t;
 }
 
 }  // namespace
@@ -39,13 +73,22 @@ uint32_t MaterialTable::idFor(int index) {
     return id;
 }
 
-int MaterialTable::textureFor(const tinygltf::TextureInfo& info, const std::string& pointer) {
+int MaterialTable::textureFor(const tinygltf::TextureInfo& info, const std::string& pointer,
+                              TextureView& view) {
+    view = TextureView{};
     if (info.index < 0) return -1;
-    if (info.texCoord != 0) return -1;  // GltfUsage warned: only TEXCOORD_0 is supported
+    // The texture info as written (GltfValidate checked the extension's values).
+    JsonView raw(&mDoc.json.at(nlohmann::json::json_pointer(pointer)), pointer, nullptr);
+    // GltfUsage warned: only TEXCOORD_0 is supported (after KHR_texture_transform's override).
+    if (effectiveTexCoord(raw) != 0) return -1;
     if (size_t(info.index) >= mModel.textures.size()) {
         throw InputError(mDoc.file, pointer + "/index", "texture missing");
     }
-    int image = mModel.textures[size_t(info.index)].source;
+    const tinygltf::Texture& gltfTexture = mModel.textures[size_t(info.index)];
+    if (gltfTexture.sampler >= 0 && size_t(gltfTexture.sampler) < mModel.samplers.size())
+        view.sampler = samplerOf(mModel.samplers[size_t(gltfTexture.sampler)]);
+    view.transform = textureTransformOf(raw);
+    int image = gltfTexture.source;
     if (image < 0) {
         // glTF 2.0 allows a texture without source (an extension may supply one); none of those
         // extensions is supported, so the texture is dropped, loudly.
@@ -76,11 +119,13 @@ Material MaterialTable::convert(size_t index) {
     }
     m.metallic = unit(pbr.metallicFactor);
     m.roughness = unit(pbr.roughnessFactor);
-    m.baseColorTexture =
-        textureFor(pbr.baseColorTexture, pointer + "/pbrMetallicRoughness/baseColorTexture");
+    m.baseColorTexture = textureFor(
+        pbr.baseColorTexture, pointer + "/pbrMetallicRoughness/baseColorTexture", m.baseColorView);
     m.metallicRoughnessTexture = textureFor(
-        pbr.metallicRoughnessTexture, pointer + "/pbrMetallicRoughness/metallicRoughnessTexture");
-    m.emissiveTexture = textureFor(src.emissiveTexture, pointer + "/emissiveTexture");
+        pbr.metallicRoughnessTexture, pointer + "/pbrMetallicRoughness/metallicRoughnessTexture",
+        m.metallicRoughnessView);
+    m.emissiveTexture =
+        textureFor(src.emissiveTexture, pointer + "/emissiveTexture", m.emissiveView);
     m.doubleSided = src.doubleSided;
 
     // KHR_materials_emissive_strength is read from the raw JSON (validated there).

@@ -27,7 +27,10 @@ public:
     uint32_t idFor(int index);
 
 private:
-    int textureFor(const tinygltf::TextureInfo& info, const std::string& pointer);
+    // Scene texture of a material's texture info (-1 = none), and how the slot reads it: the
+    // texture's sampler and the info's KHR_texture_transform.
+    int textureFor(const tinygltf::TextureInfo& info, const std::string& pointer,
+                   TextureView& view);
     Material convert(size_t index);
 
     const GltfDocument& mDoc;

@@ -108,6 +108,13 @@ const std::vector<TextureSlot>& renderedTextureSlots() {
     return kSlots;
 }
 
+uint64_t effectiveTexCoord(const JsonView& info) {
+    JsonView silent(info.raw(), info.pointer(), nullptr);
+    JsonView ext = silent.object("extensions").object("KHR_texture_transform");
+    if (auto over = ext.uint("texCoord")) return *over;
+    return silent.uint("texCoord").value_or(0);
+}
+
 glm::dmat4 nodeLocalTransform(const JsonView& node) {
     JsonView silent(node.raw(), node.pointer(), nullptr);
     if (auto m = silent.numbers("matrix", 16)) {
@@ -275,7 +282,7 @@ void useMaterials(const GltfJson& gltf, GltfUsage& usage, std::vector<std::strin
             JsonView owner = *slot.owner ? material.object(slot.owner) : material;
             JsonView info = owner.object(slot.name);
             if (!info.isObject()) continue;
-            uint64_t texCoord = info.uint("texCoord").value_or(0);
+            const uint64_t texCoord = effectiveTexCoord(info);
             if (texCoord != 0) {
                 warnings.push_back(info.pointer() + ": uses TEXCOORD_" + std::to_string(texCoord) +
                                    "; only TEXCOORD_0 is supported, the texture is ignored");

@@ -54,4 +54,8 @@ struct TextureSlot {
 };
 const std::vector<TextureSlot>& renderedTextureSlots();
 
+// The TEXCOORD_<n> a texture info reads: KHR_texture_transform's `texCoord` overrides the
+// info's own (the extension's README, "texCoord"); 0 when neither says.
+uint64_t effectiveTexCoord(const JsonView& info);
+
 }  // namespace fovea::scene::gltf

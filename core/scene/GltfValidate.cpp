@@ -53,6 +53,37 @@ void checkRange(const JsonView& owner, const char* key, double lo, double hi, co
     }
 }
 
+// KHR_texture_transform on a texture info: `offset` and `scale` two finite numbers, `rotation`
+// a finite number (radians), `texCoord` a non-negative integer (the extension's README schema).
+void validateTextureTransform(const JsonView& transform) {
+    if (!transform.isObject()) return;
+    for (const char* key : {"offset", "scale"}) {
+        if (auto v = transform.numbers(key, 2)) {
+            if (!std::isfinite((*v)[0]) || !std::isfinite((*v)[1]))
+                transform.issueAt(key, "must be finite numbers");
+        }
+    }
+    checkRange(transform, "rotation", -HUGE_VAL, HUGE_VAL, "finite");
+    transform.uint("texCoord");
+}
+
+// glTF 2.0 §5.26: the sampler enums by value (GL constants).
+void validateSamplers(const GltfJson& gltf) {
+    const auto checkEnum = [](const JsonView& sampler, const char* key,
+                              std::initializer_list<uint64_t> allowed) {
+        std::optional<uint64_t> v = sampler.uint(key);
+        if (v && std::find(allowed.begin(), allowed.end(), *v) == allowed.end())
+            sampler.issueAt(key, "invalid value " + std::to_string(*v));
+    };
+    for (size_t i = 0; i < gltf.count("samplers"); ++i) {
+        JsonView sampler = gltf.entity("samplers", i);
+        checkEnum(sampler, "magFilter", {9728, 9729});
+        checkEnum(sampler, "minFilter", {9728, 9729, 9984, 9985, 9986, 9987});
+        checkEnum(sampler, "wrapS", {33071, 33648, 10497});
+        checkEnum(sampler, "wrapT", {33071, 33648, 10497});
+    }
+}
+
 // "2.0" -> {2, 0}; nullopt unless it is <major>.<minor> with digits only.
 std::optional<std::pair<int, int>> parseVersion(const std::string& text) {
     size_t dot = text.find('.');
@@ -181,6 +212,7 @@ void validateReferences(const GltfJson& gltf) {
             info.require("index");
             checkRef(info, "index", textures, "textures");
             info.uint("texCoord");
+            validateTextureTransform(info.object("extensions").object("KHR_texture_transform"));
         }
     }
     for (size_t t = 0; t < textures; ++t) {
@@ -391,7 +423,8 @@ void validateLights(const GltfJson& gltf) {
 
 const std::vector<std::string>& supportedExtensions() {
     static const std::vector<std::string> kSupported = {
-        "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_mesh_quantization"};
+        "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_mesh_quantization",
+        "KHR_texture_transform"};
     return kSupported;
 }
 
@@ -432,6 +465,7 @@ void validateStructure(const GltfJson& gltf, const GltfDocument& doc,
     validateNodes(gltf);
     validateMaterials(gltf);
     validateImages(gltf);
+    validateSamplers(gltf);
     validateCameras(gltf);
     validateLights(gltf);
 }

@@ -332,7 +332,7 @@ void validatePrimitive(const GltfJson& gltf, const JsonView& prim, bool quantize
         JsonView m = gltf.entity("materials", *material).silent();
         for (const TextureSlot& slot : renderedTextureSlots()) {
             JsonView info = (*slot.owner ? m.object(slot.owner) : m).object(slot.name);
-            if (info.isObject() && info.uint("texCoord").value_or(0) == 0) {
+            if (info.isObject() && effectiveTexCoord(info) == 0) {
                 gltf.issues().add(prim.pointerTo("material"), std::string("material ") +
                                                                   std::to_string(*material) +
                                                                   " has a " + slot.name +

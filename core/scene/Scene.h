@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "core/scene/TextureView.h"
+
 namespace fovea::scene {
 
 struct EnvironmentMap;  // core/scene/Environment.h
@@ -36,6 +38,8 @@ struct Material {
     float metallic = 1.0f;      // glTF defaults
     float roughness = 1.0f;
     int metallicRoughnessTexture = -1;  // linear; G = roughness, B = metallic
+    // How each texture is read: its glTF sampler and KHR_texture_transform (TextureView.h).
+    TextureView baseColorView, emissiveView, metallicRoughnessView;
     bool doubleSided = false;
     bool isEmissive() const { return emissive.r > 0.0f || emissive.g > 0.0f || emissive.b > 0.0f; }
 };

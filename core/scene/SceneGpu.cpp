@@ -21,19 +21,11 @@ namespace {
 // keeps a feature compiled in may declare the buffer without ever reading it.
 constexpr size_t kMinBufferBytes = 16;
 
-const std::vector<std::string> kResourceNames = {"scene_info",
-                                                 "scene_vertices",
-                                                 "scene_triangles",
-                                                 "scene_bvh",
-                                                 "scene_bvh_triangles",
-                                                 "scene_materials",
-                                                 "scene_textures",
-                                                 "scene_texels",
-                                                 "scene_lights",
-                                                 "scene_emitters",
-                                                 "scene_vertex_colors",
-                                                 "scene_environment",
-                                                 "scene_environment_alias"};
+const std::vector<std::string> kResourceNames = {
+    "scene_info",          "scene_vertices",         "scene_triangles", "scene_bvh",
+    "scene_bvh_triangles", "scene_materials",        "scene_textures",  "scene_texels",
+    "scene_texture_views", "scene_lights",           "scene_emitters",  "scene_vertex_colors",
+    "scene_environment",   "scene_environment_alias"};
 
 // COLOR_0 as two packUnorm2x16 words (RG, BA): 8 bytes a vertex; 16-bit unorm holds every
 // normalized unsigned short exactly and floats to 1.5e-5 (colours are in [0, 1], glTF §3.7.2.1).
@@ -84,6 +76,17 @@ struct EnvironmentUpload {
     std::vector<glm::vec4> texels;
     std::vector<glm::uvec2> alias;  // the row table (height slots), then each row's columns
 };
+
+layout::TextureView packTextureView(const TextureView& view) {
+    layout::TextureView out{};
+    out.flags = view.sampler.flags();
+    if (!view.transform.isIdentity()) {
+        out.flags |= layout::kTextureViewTransformed;
+        out.row0 = view.transform.row0();
+        out.row1 = view.transform.row1();
+    }
+    return out;
+}
 
 glm::uvec2 packAliasSlot(const AliasSlot& slot) {
     return glm::uvec2(slot.alias, std::bit_cast<uint32_t>(float(slot.prob)));
@@ -179,6 +182,8 @@ void SceneGpu::upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
     std::vector<bool> textureUsed(scene.textures.size(), false);
     std::vector<layout::Material> gpuMaterials;
     gpuMaterials.reserve(materials.size());
+    std::vector<layout::TextureView> views;  // kTextureSlots a material, only when textured
+    views.reserve(materials.size() * layout::kTextureSlots);
     const std::vector<double>& density = lights.materialPowerDensity();
     for (size_t m = 0; m < materials.size(); ++m) {
         const Material& mat = materials[m];
@@ -195,6 +200,10 @@ void SceneGpu::upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
             textured = textured || hasTexels(scene.textures[g.textures[k]]);
         }
         gpuMaterials.push_back(g);
+        // The order of g.textures' x, y, z (kSceneSlot* in scene_sample.glsl).
+        for (const TextureView* view :
+             {&mat.baseColorView, &mat.metallicRoughnessView, &mat.emissiveView})
+            views.push_back(packTextureView(*view));
     }
 
     // Geometry in BVH order.
@@ -297,6 +306,8 @@ void SceneGpu::upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
     addBuffer(context, "scene_materials", gpuMaterials.data(), bytesOf(gpuMaterials));
     addBuffer(context, "scene_textures", textureTable.data(), bytesOf(textureTable));
     addBuffer(context, "scene_texels", texels.data(), bytesOf(texels));
+    if (!textured) views.clear();  // nothing samples them (SCENE_HAS_TEXTURES 0)
+    addBuffer(context, "scene_texture_views", views.data(), bytesOf(views));
     addBuffer(context, "scene_lights", gpuLights.data(), bytesOf(gpuLights));
     addBuffer(context, "scene_emitters", lights.entries().data(), bytesOf(lights.entries()));
     addBuffer(context, "scene_vertex_colors", colors.data(), bytesOf(colors));

@@ -54,6 +54,16 @@ struct Texture {      // scene_textures
     uint32_t height;
     uint32_t flags;  // reserved
 };
+// scene_texture_views: kTextureSlots per material (base colour, metallic-roughness, emissive:
+// the order of Material::textures), each the slot's TextureView (core/scene/TextureView.h).
+inline constexpr uint32_t kTextureSlots = 3;
+inline constexpr uint32_t kTextureViewTransformed = 1u << 5;  // flags bit: apply row0/row1
+struct TextureView {
+    glm::vec3 row0;  // KHR_texture_transform: u' = dot(row0, (u, v, 1)); zero when identity
+    uint32_t flags;  // TextureSampler::flags() | kTextureViewTransformed
+    glm::vec3 row1;  // v' = dot(row1, (u, v, 1))
+    uint32_t pad;
+};
 struct Light {  // scene_lights (punctual)
     glm::vec3 position;
     float range;          // 0 = infinite
@@ -89,6 +99,7 @@ struct EnvironmentHeader {
 static_assert(sizeof(Vertex) == 32);
 static_assert(sizeof(EnvironmentHeader) == 32);
 static_assert(sizeof(Triangle) == 16);
+static_assert(sizeof(TextureView) == 32);
 static_assert(sizeof(TrianglePositions) == 48);
 static_assert(sizeof(Material) == 64);
 static_assert(sizeof(Texture) == 16);

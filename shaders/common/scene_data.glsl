@@ -67,6 +67,16 @@ struct SceneTexture {
     uint flags;
 };
 
+// How a material's texture slot reads its texture (layout::TextureView, TextureView.h): the 2x3
+// KHR_texture_transform matrix and the sampler flags (bits 0-1 wrapS, 2-3 wrapT: 0 repeat,
+// 1 clamp-to-edge, 2 mirrored repeat; bit 4 nearest; bit 5 the transform is not the identity).
+struct SceneTextureView {
+    vec3 row0;  // u' = dot(row0, vec3(u, v, 1))
+    uint flags;
+    vec3 row1;  // v' = dot(row1, vec3(u, v, 1))
+    uint pad;
+};
+
 struct SceneLight {
     vec3 position;
     float range;  // 0 = infinite
@@ -88,7 +98,7 @@ struct SceneEmitter {
     float pdf;        // selection probability of this light (power / total power)
 };
 
-// Explicit bindings 16-25 and 27-29 (26 is camera.glsl's CameraInfo): the compiler's automatic numbering only numbers resources a shader
+// Explicit bindings 16-25 and 27-30 (26 is camera.glsl's CameraInfo): the compiler's automatic numbering only numbers resources a shader
 // uses, and leaves unused ones (a pass that never samples textures still declares
 // scene_texels) at binding 0, where they would collide. glslang reserves explicit slots first, so
 // a pass's own auto-numbered resources flow around this range.
@@ -138,6 +148,11 @@ layout(std430, binding = 22) readonly buffer SceneTextures {
 layout(std430, binding = 23) readonly buffer SceneTexels {
     uint texels[];
 } scene_texels;
+// kSceneTextureSlots views per material (base colour, metallic-roughness, emissive), in
+// scene_materials order.
+layout(std430, binding = 30) readonly buffer SceneTextureViews {
+    SceneTextureView views[];
+} scene_texture_views;
 #endif
 
 #if SCENE_HAS_PUNCTUAL
