@@ -68,7 +68,7 @@ json syntheticGltf(const std::string& bufferUri, size_t bufferBytes) {
     if (!bufferUri.empty()) buffer["uri"] = bufferUri;
     json gltf = json::parse(R"({
       "asset": {"version": "2.0"},
-      "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform"],
+      "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_sheen"],
       "scene": 0,
       "scenes": [{"nodes": [0, 1, 2, 3, 4]}],
       "nodes": [
@@ -204,7 +204,7 @@ void expectSyntheticScene(const Scene& s) {
     EXPECT_NEAR(light.direction.y, 1.0f, 1e-6f);
     EXPECT_FLOAT_EQ(light.outerConeAngle, 0.5f);
     EXPECT_EQ(light.color, glm::vec3(1, 0.5f, 0.25f));
-    for (const char* note : {"replaced", "LINES", "KHR_texture_transform", "/textures/2/source"}) {
+    for (const char* note : {"replaced", "LINES", "KHR_materials_sheen", "/textures/2/source"}) {
         EXPECT_TRUE(anyWarningContains(s, note)) << note;
     }
     EXPECT_EQ(s.features(), uint32_t(graph::kSceneGeometry | graph::kSceneEmissive |

@@ -15,6 +15,7 @@
 #include "core/scene/Bvh.h"
 #include "core/scene/LightTable.h"
 #include "core/scene/SceneGpu.h"
+#include "core/scene/TextureSampling.h"
 #include "core/util/Error.h"
 #include "core/vk/ComputePipeline.h"
 #include "core/vk/Context.h"
@@ -259,7 +260,7 @@ TEST_F(SceneGpuTest, BuffersFeaturesAndDefines) {
     EXPECT_EQ(plain.features(), uint32_t(graph::kSceneGeometry));
     for (const auto& [name, value] : plain.defines()) EXPECT_EQ(value, "0") << name;
     const auto names = SceneGpu::resourceNames();
-    ASSERT_EQ(names.size(), 13u);
+    ASSERT_EQ(names.size(), 14u);
     const auto stats = plain.memoryStats();
     ASSERT_EQ(stats.size(), names.size());
     uint64_t total = 0;
@@ -414,6 +415,76 @@ TEST_F(SceneGpuTest, TextureSamplingMatchesCpuBilinear) {
     EXPECT_NEAR(m.g, 0.25 * base.g, 1e-4);
     EXPECT_NEAR(m.b, 1.0 * base.b, 1e-4);
     EXPECT_NEAR(m.a, 0.5 * mr.g, 1e-4);
+}
+
+// Texture views on the GPU against the CPU reference (TextureSampling.cpp): one texture read by
+// four materials with different KHR_texture_transforms and samplers (every wrap mode, nearest and
+// bilinear), 300 UVs each in [-2, 3]^2. Nearest lookups are compared away from texel edges,
+// where float rounding may pick the neighbour.
+TEST_F(SceneGpuTest, TextureViewsMatchTheCpuReference) {
+    Scene scene = sceneFromMesh(closedBox(2));
+    scene.textures = {makeTexture(5, 3, 1)};
+    std::vector<TextureView> views(4);
+    views[0].transform = {{0.25f, -0.5f}, 0.7f, {2.0f, 0.5f}};  // repeat, bilinear
+    views[1].sampler = {TextureWrap::ClampToEdge, TextureWrap::ClampToEdge, true};
+    views[2].sampler = {TextureWrap::MirroredRepeat, TextureWrap::MirroredRepeat, true};
+    views[2].transform.rotation = -1.3f;
+    views[3].sampler = {TextureWrap::MirroredRepeat, TextureWrap::ClampToEdge, false};
+    views[3].transform.scale = {1.5f, 3.0f};
+    scene.materials.clear();
+    for (const TextureView& v : views) {
+        Material m;
+        m.baseColorTexture = 0;
+        m.baseColorView = v;
+        m.emissiveTexture = 0;  // the emissive slot reads through its own (identity) view
+        scene.materials.push_back(m);
+    }
+    const SceneGpu gpuScene(ctx(), scene);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> coord(-2.0f, 3.0f);
+    struct Expect {
+        uint32_t material, slot;
+        glm::vec2 uv;
+    };
+    std::vector<glm::vec4> queries;
+    std::vector<Expect> expects;
+    for (uint32_t m = 0; m < views.size(); ++m)
+        for (int i = 0; i < 300; ++i) {
+            const uint32_t slot = i % 10 == 0 ? 2u : 0u;
+            const glm::vec2 uv(coord(rng), coord(rng));
+            glm::vec4 q(uv, 0.0f, float(slot));
+            std::memcpy(&q.z, &m, 4);
+            queries.push_back(q);
+            expects.push_back({m, slot, uv});
+        }
+    const auto n = static_cast<uint32_t>(queries.size());
+    gpu::ComputePipeline pipe(ctx(), "test/scene_texture.comp", {{"VIEW_QUERY", "1"}});
+    gpu::Buffer q = hostBuffer(ctx(), n * 16, "queries");
+    gpu::Buffer r = hostBuffer(ctx(), n * 16, "results");
+    q.upload(ctx(), queries.data(), n * 16);
+    gpuScene.bind(pipe);
+    pipe.bind("test_queries", q).bind("test_results", r).set("count", n);
+    ctx().submitAndWait([&](const vk::raii::CommandBuffer& cmd) { pipe.dispatch(cmd, n); });
+    const auto results = r.downloadAs<glm::vec4>(ctx());
+    const Texture& t = scene.textures[0];
+    int compared = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+        const Expect& e = expects[i];
+        const TextureView& view =
+            e.slot == 0 ? scene.materials[e.material].baseColorView : TextureView{};
+        if (view.sampler.nearest) {
+            const glm::vec2 st = view.transform.apply(e.uv) * glm::vec2(t.width, t.height);
+            const glm::vec2 edge = glm::abs(st - glm::round(st));
+            if (edge.x < 1e-3f || edge.y < 1e-3f) continue;
+        }
+        const glm::vec4 ref = sampleTexture(t, view, e.uv, true);
+        ++compared;
+        for (int k = 0; k < 4; ++k)
+            ASSERT_NEAR(results[i][k], ref[k], 1e-4)
+                << "material " << e.material << " slot " << e.slot << " uv (" << e.uv.x << ", "
+                << e.uv.y << ") channel " << k;
+    }
+    EXPECT_GT(compared, 1100);
 }
 
 TEST_F(SceneGpuTest, LightSamplingMatchesTheTable) {
