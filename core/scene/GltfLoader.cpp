@@ -122,7 +122,8 @@ void buildScene(const gltf::GltfDocument& doc, const tinygltf::Model& model, con
                                    nullptr);
                 std::optional<uint64_t> index = raw.uint("indices");
                 int64_t indices = index ? int64_t(*index) : -1;
-                gltf::appendPrimitive(model, mesh, p, indices, instance.world, material, doc.file,
+                gltf::appendPrimitive(model, mesh, p, indices, instance.world, material,
+                                      scene.materials[material].normalTexture >= 0, doc.file,
                                       scene.mesh, meshWarnings);
             }
         }

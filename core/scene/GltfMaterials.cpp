@@ -73,18 +73,17 @@ uint32_t MaterialTable::idFor(int index) {
     return id;
 }
 
-int MaterialTable::textureFor(const tinygltf::TextureInfo& info, const std::string& pointer,
-                              TextureView& view) {
+int MaterialTable::textureFor(int index, const std::string& pointer, TextureView& view) {
     view = TextureView{};
-    if (info.index < 0) return -1;
+    if (index < 0) return -1;
     // The texture info as written (GltfValidate checked the extension's values).
     JsonView raw(&mDoc.json.at(nlohmann::json::json_pointer(pointer)), pointer, nullptr);
     // GltfUsage warned: only TEXCOORD_0 is supported (after KHR_texture_transform's override).
     if (effectiveTexCoord(raw) != 0) return -1;
-    if (size_t(info.index) >= mModel.textures.size()) {
+    if (size_t(index) >= mModel.textures.size()) {
         throw InputError(mDoc.file, pointer + "/index", "texture missing");
     }
-    const tinygltf::Texture& gltfTexture = mModel.textures[size_t(info.index)];
+    const tinygltf::Texture& gltfTexture = mModel.textures[size_t(index)];
     if (gltfTexture.sampler >= 0 && size_t(gltfTexture.sampler) < mModel.samplers.size())
         view.sampler = samplerOf(mModel.samplers[size_t(gltfTexture.sampler)]);
     view.transform = textureTransformOf(raw);
@@ -92,7 +91,7 @@ int MaterialTable::textureFor(const tinygltf::TextureInfo& info, const std::stri
     if (image < 0) {
         // glTF 2.0 allows a texture without source (an extension may supply one); none of those
         // extensions is supported, so the texture is dropped, loudly.
-        mWarnings.push_back("/textures/" + std::to_string(info.index) +
+        mWarnings.push_back("/textures/" + std::to_string(index) +
                             ": no image source (unsupported texture extension?); the texture "
                             "is ignored by " +
                             pointer);
@@ -119,13 +118,17 @@ Material MaterialTable::convert(size_t index) {
     }
     m.metallic = unit(pbr.metallicFactor);
     m.roughness = unit(pbr.roughnessFactor);
-    m.baseColorTexture = textureFor(
-        pbr.baseColorTexture, pointer + "/pbrMetallicRoughness/baseColorTexture", m.baseColorView);
+    m.baseColorTexture =
+        textureFor(pbr.baseColorTexture.index, pointer + "/pbrMetallicRoughness/baseColorTexture",
+                   m.baseColorView);
     m.metallicRoughnessTexture = textureFor(
-        pbr.metallicRoughnessTexture, pointer + "/pbrMetallicRoughness/metallicRoughnessTexture",
-        m.metallicRoughnessView);
+        pbr.metallicRoughnessTexture.index,
+        pointer + "/pbrMetallicRoughness/metallicRoughnessTexture", m.metallicRoughnessView);
     m.emissiveTexture =
-        textureFor(src.emissiveTexture, pointer + "/emissiveTexture", m.emissiveView);
+        textureFor(src.emissiveTexture.index, pointer + "/emissiveTexture", m.emissiveView);
+    // §3.9.3: a tangent-space normal texture; its scale multiplies the sampled x and y.
+    m.normalTexture = textureFor(src.normalTexture.index, pointer + "/normalTexture", m.normalView);
+    m.normalScale = float(src.normalTexture.scale);
     m.doubleSided = src.doubleSided;
 
     // KHR_materials_emissive_strength is read from the raw JSON (validated there).

@@ -29,8 +29,8 @@ public:
 private:
     // Scene texture of a material's texture info (-1 = none), and how the slot reads it: the
     // texture's sampler and the info's KHR_texture_transform.
-    int textureFor(const tinygltf::TextureInfo& info, const std::string& pointer,
-                   TextureView& view);
+    // `index`: the info's texture (-1 = none); `pointer` names the info in the JSON.
+    int textureFor(int index, const std::string& pointer, TextureView& view);
     Material convert(size_t index);
 
     const GltfDocument& mDoc;

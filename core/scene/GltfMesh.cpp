@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <type_traits>
 
 #include "core/scene/GltfAccessor.h"
 #include "core/scene/GltfLayout.h"
+#include "core/scene/Tangents.h"
 #include "core/util/Error.h"
 
 namespace fovea::scene::gltf {
@@ -92,11 +94,34 @@ size_t repairNormals(std::vector<glm::vec3>& normals, const std::vector<glm::vec
     return badCount;
 }
 
+// TANGENT values (§3.7.2.1: VEC4 float): xyz finite and not zero, w +1 or -1. InputError naming
+// the accessor and the vertex otherwise (the validator checks the format).
+std::vector<glm::vec4> readTangents(const tinygltf::Model& model, size_t accessor,
+                                    const std::string& file) {
+    const std::vector<float> raw = readAccessorFloats(model, accessor, 4, file);
+    std::vector<glm::vec4> out(raw.size() / 4);
+    for (size_t i = 0; i < out.size(); ++i) {
+        out[i] = glm::vec4(raw[4 * i], raw[4 * i + 1], raw[4 * i + 2], raw[4 * i + 3]);
+        const float length = glm::length(glm::vec3(out[i]));
+        if (!(length > 1e-6f) || !std::isfinite(length) ||
+            std::abs(std::abs(out[i].w) - 1.0f) > 1e-3f) {
+            char value[96];
+            std::snprintf(value, sizeof value, "(%g, %g, %g, %g)", double(out[i].x),
+                          double(out[i].y), double(out[i].z), double(out[i].w));
+            throw InputError(file, "/accessors/" + std::to_string(accessor),
+                             "TANGENT of vertex " + std::to_string(i) + " is " + value +
+                                 ": xyz must be a finite non-zero vector and w +1 or -1");
+        }
+    }
+    return out;
+}
+
 }  // namespace
 
 void appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t primIndex,
                      int64_t indexAccessor, const glm::dmat4& world, uint32_t materialId,
-                     const std::string& file, TriangleMesh& out, std::set<std::string>& warnings) {
+                     bool normalMapped, const std::string& file, TriangleMesh& out,
+                     std::set<std::string>& warnings) {
     const tinygltf::Primitive& prim = model.meshes.at(meshIndex).primitives.at(primIndex);
     std::string pointer =
         "/meshes/" + std::to_string(meshIndex) + "/primitives/" + std::to_string(primIndex);
@@ -143,7 +168,12 @@ void appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t prim
             colors[i / components][int(i % components)] = v;
         }
     }
-    if ((!rawNormals.empty() && rawNormals.size() != raw.size()) ||
+    // TANGENT (§3.7.2.1: VEC4 float, xyz unit, w = +-1) only where a normal texture uses it.
+    std::vector<glm::vec4> rawTangents;
+    int tangentAccessor = normalMapped ? attribute(prim, "TANGENT") : -1;
+    if (tangentAccessor >= 0) rawTangents = readTangents(model, size_t(tangentAccessor), file);
+    if ((!rawTangents.empty() && rawTangents.size() != vertexCount) ||
+        (!rawNormals.empty() && rawNormals.size() != raw.size()) ||
         (!rawUvs.empty() && rawUvs.size() / 2 != vertexCount) ||
         (!colors.empty() && colors.size() != vertexCount)) {
         throw InputError(file, pointer + "/attributes", "attribute counts differ");
@@ -199,9 +229,50 @@ void appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t prim
         out.colors.assign(out.positions.size(), glm::vec4(1.0f));
     const bool withColors = !colors.empty() || !out.colors.empty();
     auto colorAt = [&](size_t i) { return colors.empty() ? glm::vec4(1.0f) : colors[i]; };
+    // Tangents likewise: empty until a normal-mapped primitive comes; (0,0,0,1) elsewhere.
+    const bool withTangents = normalMapped || !out.tangents.empty();
+    if (normalMapped && out.tangents.empty())
+        out.tangents.assign(out.positions.size(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    const size_t firstVertex = out.positions.size(), firstTriangle = out.triangles.size();
+    // Called on every return: the primitive's tangents from TANGENT (model matrix applied to
+    // xyz, w flipped with a mirroring node, §3.7.4) or generated; or the placeholder.
+    const auto finishTangents = [&](const std::vector<uint32_t>& sourceVertex) {
+        if (!withTangents) return;
+        const size_t added = out.positions.size() - firstVertex;
+        if (!normalMapped) {
+            out.tangents.resize(out.positions.size(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+            return;
+        }
+        if (!rawTangents.empty()) {
+            for (size_t i = 0; i < added; ++i) {
+                const glm::vec4 t = rawTangents[sourceVertex.empty() ? i : sourceVertex[i]];
+                glm::vec3 xyz = glm::vec3(linear * glm::dvec3(t));
+                const glm::vec3 n = out.normals[firstVertex + i];
+                xyz -= n * glm::dot(n, xyz);  // back to the tangent plane after a shear
+                const float length = glm::length(xyz);
+                out.tangents.push_back(
+                    length > 0.0f && std::isfinite(length)
+                        ? glm::vec4(xyz / length, (t.w < 0.0f) != flip ? -1.0f : 1.0f)
+                        : glm::vec4(perpendicularTo(n), 1.0f));
+            }
+            return;
+        }
+        std::vector<glm::uvec3> local;
+        local.reserve(out.triangles.size() - firstTriangle);
+        for (size_t t = firstTriangle; t < out.triangles.size(); ++t)
+            local.push_back(out.triangles[t] - glm::uvec3(uint32_t(firstVertex)));
+        const auto range = [&](const auto& v) {
+            using T = typename std::decay_t<decltype(v)>::value_type;
+            return std::vector<T>(v.begin() + ptrdiff_t(firstVertex), v.end());
+        };
+        const std::vector<glm::vec4> generated =
+            generateTangents(range(out.positions), range(out.normals), range(out.uvs), local);
+        out.tangents.insert(out.tangents.end(), generated.begin(), generated.end());
+    };
 
     if (rawNormals.empty()) {
         // Flat normals need a vertex per corner: corners of different faces differ in normal.
+        std::vector<uint32_t> sourceVertex;  // the primitive's vertex of each corner
         for (size_t t = 0; t < triangles; ++t) {
             uint32_t a = indices[3 * t], b = indices[3 * t + 1], c = indices[3 * t + 2];
             if (flip) std::swap(b, c);
@@ -212,9 +283,11 @@ void appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t prim
                 out.normals.push_back(n);
                 out.uvs.push_back(uvAt(v));
                 if (withColors) out.colors.push_back(colorAt(v));
+                sourceVertex.push_back(v);
             }
             out.triangles.emplace_back(first, first + 1, first + 2);
         }
+        finishTangents(sourceVertex);
         return;
     }
     std::vector<glm::vec3> normals(vertexCount);
@@ -237,6 +310,7 @@ void appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t prim
         if (flip) std::swap(b, c);
         out.triangles.emplace_back(uint32_t(base) + a, uint32_t(base) + b, uint32_t(base) + c);
     }
+    finishTangents({});
 }
 
 }  // namespace fovea::scene::gltf

@@ -17,9 +17,10 @@ namespace fovea::scene::gltf {
 
 // `indices`: the primitive's indices accessor (-1 = none), taken from the checked JSON rather
 // than from tinygltf (see GltfTiny.cpp). `warnings` is a set because a primitive drawn by several
-// nodes reports its problems once.
+// nodes reports its problems once. `normalMapped`: the material has a normal texture, so the
+// primitive needs tangents (its TANGENT attribute, else generated: core/scene/Tangents.h).
 void appendPrimitive(const tinygltf::Model& model, size_t mesh, size_t primitive, int64_t indices,
-                     const glm::dmat4& world, uint32_t materialId, const std::string& file,
-                     TriangleMesh& out, std::set<std::string>& warnings);
+                     const glm::dmat4& world, uint32_t materialId, bool normalMapped,
+                     const std::string& file, TriangleMesh& out, std::set<std::string>& warnings);
 
 }  // namespace fovea::scene::gltf

@@ -63,7 +63,7 @@ void pruneMeshes(Json& root, const GltfUsage& usage) {
             for (auto it = attributes.begin(); it != attributes.end();) {
                 const std::string& key = it.key();
                 it = (key == "POSITION" || key == "NORMAL" || key == "TEXCOORD_0" ||
-                      key == "COLOR_0")
+                      key == "COLOR_0" || key == "TANGENT")
                          ? std::next(it)
                          : attributes.erase(it);
             }

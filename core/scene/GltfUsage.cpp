@@ -104,7 +104,8 @@ const std::vector<TextureSlot>& renderedTextureSlots() {
     static const std::vector<TextureSlot> kSlots = {
         {"pbrMetallicRoughness", "baseColorTexture"},
         {"pbrMetallicRoughness", "metallicRoughnessTexture"},
-        {"", "emissiveTexture"}};
+        {"", "emissiveTexture"},
+        {"", "normalTexture"}};
     return kSlots;
 }
 
@@ -246,6 +247,7 @@ void useMesh(const GltfJson& gltf, uint64_t mesh, GltfUsage& usage, std::vector<
         mark(usage.accessors, attributes.uint("NORMAL"));
         mark(usage.accessors, attributes.uint("TEXCOORD_0"));
         mark(usage.accessors, attributes.uint("COLOR_0"));
+        mark(usage.accessors, attributes.uint("TANGENT"));
         mark(usage.accessors, prim.uint("indices"));
         mark(usage.materials, prim.uint("material"));
         if (warn && prim.array("targets").size() > 0) {

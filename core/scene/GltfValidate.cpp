@@ -196,7 +196,8 @@ void validateReferences(const GltfJson& gltf) {
         for (size_t p = 0; p < primitives.size(); ++p) {
             JsonView prim = primitives.element(p);
             JsonView attributes = prim.object("attributes");
-            for (const char* semantic : {"POSITION", "NORMAL", "TEXCOORD_0", "COLOR_0"}) {
+            for (const char* semantic :
+                 {"POSITION", "NORMAL", "TEXCOORD_0", "COLOR_0", "TANGENT"}) {
                 checkRef(attributes, semantic, accessors, "accessors");
             }
             checkRef(prim, "indices", accessors, "accessors");
@@ -274,6 +275,7 @@ void validateMaterials(const GltfJson& gltf) {
                 }
             }
         }
+        checkRange(material.object("normalTexture"), "scale", -HUGE_VAL, HUGE_VAL, "finite");
         checkRange(pbr, "metallicFactor", 0.0, 1.0 + 1e-4, "in [0, 1]");
         checkRange(pbr, "roughnessFactor", 0.0, 1.0 + 1e-4, "in [0, 1]");
         if (auto emissive = material.numbers("emissiveFactor", 3)) {

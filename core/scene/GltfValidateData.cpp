@@ -270,6 +270,10 @@ bool allowedFormat(const std::string& semantic, const std::string& type, uint64_
             (normalized && (componentType == kUnsignedByte || componentType == kUnsignedShort));
         return type == "VEC2" && (core || (quantized && small));
     }
+    if (semantic == "TANGENT") {  // §3.7.2.1 VEC4 float; quantized: normalized byte/short
+        return type == "VEC4" && (isFloat || (quantized && normalized &&
+                                              (componentType == kByte || componentType == kShort)));
+    }
     if (semantic == "COLOR_0") {  // §3.7.2.1: float, or normalized unsigned byte/short
         return (type == "VEC3" || type == "VEC4") &&
                (isFloat || (normalized &&
@@ -281,7 +285,7 @@ bool allowedFormat(const std::string& semantic, const std::string& type, uint64_
 void validatePrimitive(const GltfJson& gltf, const JsonView& prim, bool quantized) {
     JsonView attributes = prim.silent().object("attributes");
     std::optional<uint64_t> vertexCount;
-    for (const char* semantic : {"POSITION", "NORMAL", "TEXCOORD_0", "COLOR_0"}) {
+    for (const char* semantic : {"POSITION", "NORMAL", "TEXCOORD_0", "COLOR_0", "TANGENT"}) {
         std::optional<uint64_t> index = attributes.uint(semantic);
         if (!index || *index >= gltf.count("accessors")) continue;
         JsonView accessor = gltf.entity("accessors", *index).silent();

@@ -38,8 +38,12 @@ struct Material {
     float metallic = 1.0f;      // glTF defaults
     float roughness = 1.0f;
     int metallicRoughnessTexture = -1;  // linear; G = roughness, B = metallic
+    // glTF 2.0 §3.9.3 normal texture (linear; tangent space, needs TriangleMesh::tangents) and
+    // its `scale` (x and y of the sampled normal are multiplied by it).
+    int normalTexture = -1;
+    float normalScale = 1.0f;
     // How each texture is read: its glTF sampler and KHR_texture_transform (TextureView.h).
-    TextureView baseColorView, emissiveView, metallicRoughnessView;
+    TextureView baseColorView, emissiveView, metallicRoughnessView, normalView;
     bool doubleSided = false;
     bool isEmissive() const { return emissive.r > 0.0f || emissive.g > 0.0f || emissive.b > 0.0f; }
 };
@@ -86,6 +90,11 @@ struct TriangleMesh {
     // colour). Empty when no primitive has one; else one per position, (1,1,1,1) for vertices of
     // primitives without COLOR_0.
     std::vector<glm::vec4> colors;
+    // Tangent frames for normal textures (glTF TANGENT: xyz unit tangent along +u, w = +-1 the
+    // bitangent's sign, B = cross(N, T) * w), from the file or generated (core/scene/Tangents.h).
+    // Empty when no primitive is normal-mapped; else one per position, (0,0,0,1) for vertices
+    // of primitives without a normal texture.
+    std::vector<glm::vec4> tangents;
     std::vector<glm::uvec3> triangles;
     std::vector<uint32_t> materialIds;
     size_t triangleCount() const { return triangles.size(); }

@@ -21,11 +21,14 @@ namespace {
 // keeps a feature compiled in may declare the buffer without ever reading it.
 constexpr size_t kMinBufferBytes = 16;
 
-const std::vector<std::string> kResourceNames = {
-    "scene_info",          "scene_vertices",         "scene_triangles", "scene_bvh",
-    "scene_bvh_triangles", "scene_materials",        "scene_textures",  "scene_texels",
-    "scene_texture_views", "scene_lights",           "scene_emitters",  "scene_vertex_colors",
-    "scene_environment",   "scene_environment_alias"};
+const std::vector<std::string> kResourceNames = {"scene_info",          "scene_vertices",
+                                                 "scene_triangles",     "scene_bvh",
+                                                 "scene_bvh_triangles", "scene_materials",
+                                                 "scene_textures",      "scene_texels",
+                                                 "scene_texture_views", "scene_lights",
+                                                 "scene_emitters",      "scene_vertex_colors",
+                                                 "scene_environment",   "scene_environment_alias",
+                                                 "scene_tangents"};
 
 // COLOR_0 as two packUnorm2x16 words (RG, BA): 8 bytes a vertex; 16-bit unorm holds every
 // normalized unsigned short exactly and floats to 1.5e-5 (colours are in [0, 1], glTF §3.7.2.1).
@@ -79,6 +82,7 @@ struct EnvironmentUpload {
 
 layout::TextureView packTextureView(const TextureView& view) {
     layout::TextureView out{};
+    out.scale = 1.0f;
     out.flags = view.sampler.flags();
     if (!view.transform.isIdentity()) {
         out.flags |= layout::kTextureViewTransformed;
@@ -183,6 +187,7 @@ void SceneGpu::upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
     std::vector<layout::Material> gpuMaterials;
     gpuMaterials.reserve(materials.size());
     std::vector<layout::TextureView> views;  // kTextureSlots a material, only when textured
+    bool normalMapped = false;
     views.reserve(materials.size() * layout::kTextureSlots);
     const std::vector<double>& density = lights.materialPowerDensity();
     for (size_t m = 0; m < materials.size(); ++m) {
@@ -193,17 +198,22 @@ void SceneGpu::upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
         g.params = glm::vec4(mat.metallic, mat.roughness, mat.doubleSided ? 1.0f : 0.0f, 0.0f);
         g.textures = glm::ivec4(validTexture(mat.baseColorTexture, scene.textures),
                                 validTexture(mat.metallicRoughnessTexture, scene.textures),
-                                validTexture(mat.emissiveTexture, scene.textures), -1);
-        for (int k = 0; k < 3; ++k) {
+                                validTexture(mat.emissiveTexture, scene.textures),
+                                validTexture(mat.normalTexture, scene.textures));
+        // A normal texture needs tangents; a hand-built mesh without them shades unmapped.
+        if (mesh.tangents.size() != mesh.positions.size()) g.textures.w = -1;
+        normalMapped = normalMapped || g.textures.w >= 0;
+        for (int k = 0; k < 4; ++k) {
             if (g.textures[k] < 0) continue;
             textureUsed[g.textures[k]] = true;
             textured = textured || hasTexels(scene.textures[g.textures[k]]);
         }
         gpuMaterials.push_back(g);
-        // The order of g.textures' x, y, z (kSceneSlot* in scene_sample.glsl).
+        // The order of g.textures' x, y, z, w (kSceneSlot* in scene_sample.glsl).
         for (const TextureView* view :
-             {&mat.baseColorView, &mat.metallicRoughnessView, &mat.emissiveView})
+             {&mat.baseColorView, &mat.metallicRoughnessView, &mat.emissiveView, &mat.normalView})
             views.push_back(packTextureView(*view));
+        views.back().scale = mat.normalScale;
     }
 
     // Geometry in BVH order.
@@ -216,6 +226,13 @@ void SceneGpu::upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
         vertices[v] = {glm::vec4(mesh.positions[v], uv.x), glm::vec4(n, uv.y)};
     }
     // Vertex colours only when the mesh has them (else an empty binding, compiled out).
+    // Tangents only when a material's normal texture will read them (SCENE_HAS_NORMAL_MAPS);
+    // otherwise no material may name one (the shader reads scene_tangents only then).
+    mNormalMaps = normalMapped && textured;
+    if (!mNormalMaps)
+        for (layout::Material& g : gpuMaterials) g.textures.w = -1;
+    std::vector<glm::vec4> tangents;
+    if (mNormalMaps) tangents = mesh.tangents;
     mVertexColors = !mesh.colors.empty();
     std::vector<glm::uvec2> colors(mVertexColors ? vertices.size() : 0);
     for (size_t v = 0; v < colors.size(); ++v)
@@ -319,6 +336,7 @@ void SceneGpu::upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
     addBuffer(context, "scene_environment", environmentData.data(), bytesOf(environmentData));
     addBuffer(context, "scene_environment_alias", environment.alias.data(),
               bytesOf(environment.alias));
+    addBuffer(context, "scene_tangents", tangents.data(), bytesOf(tangents));
 }
 
 void SceneGpu::bind(gpu::ComputePipeline& pipeline) const {
@@ -332,6 +350,7 @@ std::vector<std::pair<std::string, std::string>> SceneGpu::defines() const {
             {"SCENE_HAS_EMISSIVE", flag(kSceneEmissive)},
             {"SCENE_HAS_PUNCTUAL", flag(kScenePunctual)},
             {"SCENE_HAS_VERTEX_COLORS", mVertexColors ? "1" : "0"},
+            {"SCENE_HAS_NORMAL_MAPS", mNormalMaps ? "1" : "0"},
             {"SCENE_HAS_ENVIRONMENT", flag(kSceneEnvironment)}};
 }
 

@@ -45,8 +45,8 @@ struct Material {         // scene_materials
     glm::vec4 baseColor;  // linear RGBA factor
     glm::vec4 emissive;   // rgb linear factor; w = emitted power per unit area (LightTable)
     glm::vec4 params;     // x metallic, y roughness, z doubleSided (0/1), w unused
-    glm::ivec4 textures;  // x baseColor (sRGB), y metallicRoughness (linear), z emissive (sRGB);
-                          // -1 = none
+    glm::ivec4 textures;  // x baseColor (sRGB), y metallicRoughness (linear), z emissive (sRGB),
+                          // w normal (linear, tangent space); -1 = none
 };
 struct Texture {      // scene_textures
     uint32_t offset;  // first texel in scene_texels
@@ -54,15 +54,15 @@ struct Texture {      // scene_textures
     uint32_t height;
     uint32_t flags;  // reserved
 };
-// scene_texture_views: kTextureSlots per material (base colour, metallic-roughness, emissive:
-// the order of Material::textures), each the slot's TextureView (core/scene/TextureView.h).
-inline constexpr uint32_t kTextureSlots = 3;
+// scene_texture_views: kTextureSlots per material (base colour, metallic-roughness, emissive,
+// normal: the order of Material::textures), each the slot's TextureView (TextureView.h).
+inline constexpr uint32_t kTextureSlots = 4;
 inline constexpr uint32_t kTextureViewTransformed = 1u << 5;  // flags bit: apply row0/row1
 struct TextureView {
     glm::vec3 row0;  // KHR_texture_transform: u' = dot(row0, (u, v, 1)); zero when identity
     uint32_t flags;  // TextureSampler::flags() | kTextureViewTransformed
     glm::vec3 row1;  // v' = dot(row1, (u, v, 1))
-    uint32_t pad;
+    float scale;     // the normal slot: normalTexture.scale (glTF §3.9.3); 1 elsewhere
 };
 struct Light {  // scene_lights (punctual)
     glm::vec3 position;
@@ -136,6 +136,8 @@ public:
     std::vector<std::pair<std::string, std::string>> defines() const;
     // The mesh has per-vertex colours (scene_vertex_colors, SCENE_HAS_VERTEX_COLORS).
     bool hasVertexColors() const { return mVertexColors; }
+    // A material reads a normal texture (scene_tangents, SCENE_HAS_NORMAL_MAPS).
+    bool hasNormalMaps() const { return mNormalMaps; }
     // The uploaded environment (zeros without one; a black map is not uploaded).
     const layout::EnvironmentHeader& environment() const { return mEnvironment; }
 
@@ -160,6 +162,7 @@ private:
     std::vector<uint32_t> mTriangleOrder;
     BvhStats mBvhStats;
     bool mVertexColors = false;
+    bool mNormalMaps = false;
     layout::Info mInfo{};
     layout::EnvironmentHeader mEnvironment{};
     uint32_t mFeatures = 0;

@@ -4,7 +4,7 @@
 // followed by a 4-byte scalar shares one 16-byte slot in std430, exactly like glm::vec3 + float.
 //
 // Compile with SceneGpu::defines(): SCENE_HAS_TEXTURES / SCENE_HAS_EMISSIVE / SCENE_HAS_PUNCTUAL
-// / SCENE_HAS_VERTEX_COLORS / SCENE_HAS_ENVIRONMENT = 0 drop the buffers and code paths a scene
+// / SCENE_HAS_VERTEX_COLORS / SCENE_HAS_NORMAL_MAPS / SCENE_HAS_ENVIRONMENT = 0 drop the buffers and code paths a scene
 // does not need. Without defines everything is on, which is valid for any scene (empty buffers
 // are still bound; an empty scene_vertex_colors reads as white, see sceneVertexColor; an empty
 // scene_environment has width 0 and emits nothing).
@@ -22,6 +22,9 @@
 #endif
 #ifndef SCENE_HAS_VERTEX_COLORS
 #define SCENE_HAS_VERTEX_COLORS 1
+#endif
+#ifndef SCENE_HAS_NORMAL_MAPS
+#define SCENE_HAS_NORMAL_MAPS 1  // without one, textures.w is -1 everywhere: nothing is mapped
 #endif
 #ifndef SCENE_HAS_ENVIRONMENT
 #define SCENE_HAS_ENVIRONMENT 1  // without one, scene_environment's width is 0: nothing emits
@@ -57,7 +60,8 @@ struct SceneMaterial {
     vec4 baseColor;  // linear RGBA factor
     vec4 emissive;   // rgb linear factor; w = emitted power per unit area (light selection)
     vec4 params;     // x metallic, y roughness, z doubleSided (0/1)
-    ivec4 textures;  // x baseColor (sRGB), y metallicRoughness (linear), z emissive (sRGB); -1 none
+    ivec4 textures;  // x baseColor (sRGB), y metallicRoughness (linear), z emissive (sRGB),
+                     // w normal (linear, tangent space); -1 none
 };
 
 struct SceneTexture {
@@ -74,7 +78,7 @@ struct SceneTextureView {
     vec3 row0;  // u' = dot(row0, vec3(u, v, 1))
     uint flags;
     vec3 row1;  // v' = dot(row1, vec3(u, v, 1))
-    uint pad;
+    float scale;  // the normal slot: normalTexture.scale (glTF 2.0 §3.9.3); 1 elsewhere
 };
 
 struct SceneLight {
@@ -98,7 +102,7 @@ struct SceneEmitter {
     float pdf;        // selection probability of this light (power / total power)
 };
 
-// Explicit bindings 16-25 and 27-30 (26 is camera.glsl's CameraInfo): the compiler's automatic numbering only numbers resources a shader
+// Explicit bindings 16-25 and 27-31 (26 is camera.glsl's CameraInfo): the compiler's automatic numbering only numbers resources a shader
 // uses, and leaves unused ones (a pass that never samples textures still declares
 // scene_texels) at binding 0, where they would collide. glslang reserves explicit slots first, so
 // a pass's own auto-numbered resources flow around this range.
@@ -148,7 +152,7 @@ layout(std430, binding = 22) readonly buffer SceneTextures {
 layout(std430, binding = 23) readonly buffer SceneTexels {
     uint texels[];
 } scene_texels;
-// kSceneTextureSlots views per material (base colour, metallic-roughness, emissive), in
+// kSceneTextureSlots views per material (base colour, metallic-roughness, emissive, normal), in
 // scene_materials order.
 layout(std430, binding = 30) readonly buffer SceneTextureViews {
     SceneTextureView views[];
@@ -187,6 +191,15 @@ layout(std430, binding = 29) readonly buffer SceneEnvironmentAlias {
     // the row), y floatBitsToUint(keep probability)
     uvec2 alias[];
 } scene_environment_alias;
+#endif
+
+#if SCENE_HAS_NORMAL_MAPS
+// Tangent frames per vertex (scene_vertices order) for normal textures: xyz unit tangent along +u,
+// w = +-1 the bitangent's sign (glTF TANGENT, or generated: core/scene/Tangents.h). A 16-byte
+// dummy when no material is normal-mapped.
+layout(std430, binding = 31) readonly buffer SceneTangents {
+    vec4 tangents[];
+} scene_tangents;
 #endif
 
 #if SCENE_HAS_VERTEX_COLORS

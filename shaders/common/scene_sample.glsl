@@ -116,6 +116,8 @@ struct SceneSurface {
     uint material;
     float area;   // of the triangle
     vec4 color;   // glTF COLOR_0, interpolated (1 without vertex colours)
+    uint triangle;       // the hit, for what only some callers need (sceneApplyNormalMap)
+    vec2 barycentrics;
 };
 
 struct SceneMaterialSample {
@@ -178,6 +180,8 @@ SceneSurface sceneSurface(uint triangle, vec2 barycentrics) {
 #else
     s.color = vec4(1.0);
 #endif
+    s.triangle = triangle;
+    s.barycentrics = barycentrics;
     return s;
 }
 
@@ -194,10 +198,11 @@ vec4 sceneTexel(SceneTexture tex, uint x, uint y, bool srgb) {
 #endif
 
 // Texture slots of a material, in scene_texture_views order (SceneGpu.cpp).
-const uint kSceneTextureSlots = 3u;
+const uint kSceneTextureSlots = 4u;
 const uint kSceneSlotBaseColor = 0u;
 const uint kSceneSlotMetallicRoughness = 1u;
 const uint kSceneSlotEmissive = 2u;
+const uint kSceneSlotNormal = 3u;
 const uint kSceneViewNearest = 16u;
 const uint kSceneViewTransformed = 32u;
 
@@ -311,6 +316,39 @@ SceneMaterialSample sceneSurfaceMaterial(SceneSurface s) {
     m.baseColor *= s.color.rgb;
     m.alpha *= s.color.a;
     return m;
+}
+
+// glTF 2.0 §3.9.3: the shading normal from the material's tangent-space normal texture,
+// n_t = (2 rgb - 1) * (scale, scale, 1), N' = normalize(T n_t.x + B n_t.y + N n_t.z) with T the
+// interpolated tangent made perpendicular to N and B = cross(N, T) * w. Replaces s.normal (front
+// side, like the interpolated normal; callers flip it for back faces as before). GBuffer and
+// PathTrace call it before shading; the geometric normal stays for ray offsets and leak checks.
+// A degenerate frame or texel keeps the interpolated normal.
+void sceneApplyNormalMap(inout SceneSurface s) {
+#if SCENE_HAS_NORMAL_MAPS && SCENE_HAS_TEXTURES
+    // textures.w >= 0 only when scene_tangents holds one frame per vertex (SceneGpu).
+    int texture = scene_materials.materials[s.material].textures.w;
+    if (texture < 0) return;
+    uvec3 corners = scene_triangles.triangles[s.triangle].indices;
+    vec3 w = vec3(1.0 - s.barycentrics.x - s.barycentrics.y, s.barycentrics);
+    vec4 tangent = scene_tangents.tangents[corners.x] * w.x +
+                   scene_tangents.tangents[corners.y] * w.y +
+                   scene_tangents.tangents[corners.z] * w.z;
+    vec3 t = tangent.xyz - s.normal * dot(s.normal, tangent.xyz);
+    float tLength = length(t);
+    if (!(tLength > 1e-8)) return;  // no tangent frame here
+    t /= tLength;
+    vec3 b = cross(s.normal, t) * (tangent.w < 0.0 ? -1.0 : 1.0);
+    SceneTextureView v =
+        scene_texture_views.views[s.material * kSceneTextureSlots + kSceneSlotNormal];
+    vec3 nt = sceneSampleMaterialTexture(s.material, kSceneSlotNormal, texture, s.uv, false).xyz;
+    nt = nt * 2.0 - 1.0;
+    nt.xy *= v.scale;
+    vec3 n = t * nt.x + b * nt.y + s.normal * nt.z;
+    float nLength = length(n);
+    if (!(nLength > 1e-8)) return;  // a (0.5, 0.5, 0.5) texel encodes no direction
+    s.normal = n / nLength;
+#endif
 }
 
 // Radiance leaving a surface of this material; back faces emit only when double-sided.

@@ -107,6 +107,7 @@ void main() {
     }
 
     SceneSurface s = sceneSurface(hit.triangle, hit.barycentrics);
+    sceneApplyNormalMap(s);  // glTF §3.9.3: the denoisers' guide normal is the mapped one
     bool frontFacing = dot(s.geometricNormal, dir) < 0.0;
     // Shading normal flipped with the face the ray sees (not per pixel against the view vector:
     // interpolated normals may legitimately tilt away at silhouettes).

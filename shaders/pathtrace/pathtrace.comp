@@ -190,6 +190,7 @@ struct Vertex {
 
 Vertex makeVertex(uint triangle, vec2 bary, vec3 rayDir) {
     SceneSurface s = sceneSurface(triangle, bary);
+    sceneApplyNormalMap(s);  // glTF §3.9.3 normal texture; ng stays for offsets and leaks
     SceneMaterialSample m = sceneSurfaceMaterial(s);
     bool front = dot(s.geometricNormal, rayDir) < 0.0;
     Vertex v;
