@@ -260,7 +260,7 @@ TEST_F(SceneGpuTest, BuffersFeaturesAndDefines) {
     EXPECT_EQ(plain.features(), uint32_t(graph::kSceneGeometry));
     for (const auto& [name, value] : plain.defines()) EXPECT_EQ(value, "0") << name;
     const auto names = SceneGpu::resourceNames();
-    ASSERT_EQ(names.size(), 14u);
+    ASSERT_EQ(names.size(), 15u);
     const auto stats = plain.memoryStats();
     ASSERT_EQ(stats.size(), names.size());
     uint64_t total = 0;
@@ -285,10 +285,12 @@ TEST_F(SceneGpuTest, BuffersFeaturesAndDefines) {
     const SceneGpu full(ctx(), fullScene());
     EXPECT_EQ(full.features(), uint32_t(graph::kSceneGeometry | graph::kSceneEmissive |
                                         graph::kSceneTextures | graph::kScenePunctual));
-    for (const auto& [name, value] : full.defines())  // no COLOR_0, no environment
-        EXPECT_EQ(value,
-                  name == "SCENE_HAS_VERTEX_COLORS" || name == "SCENE_HAS_ENVIRONMENT" ? "0" : "1")
-            << name;
+    // Everything but COLOR_0, normal maps and an environment.
+    for (const auto& [name, value] : full.defines()) {
+        const bool absent = name == "SCENE_HAS_VERTEX_COLORS" || name == "SCENE_HAS_NORMAL_MAPS" ||
+                            name == "SCENE_HAS_ENVIRONMENT";
+        EXPECT_EQ(value, absent ? "0" : "1") << name;
+    }
     EXPECT_EQ(full.info().emitterCount, 2u);
     EXPECT_EQ(full.buffer("scene_texels").size(), (15u + 16u + 1u) * 4u);
 }

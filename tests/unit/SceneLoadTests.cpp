@@ -68,11 +68,21 @@ TEST(SceneLoadReal, FlightHelmetTextures) {
     Scene s = load("flight-helmet/FlightHelmet.gltf");
     expectConsistent(s);
     EXPECT_EQ(s.mesh.triangleCount(), 94722u);
-    // Base colour + occlusion-roughness-metal per material (normal maps are not read).
-    EXPECT_EQ(s.textures.size(), 10u);
+    // Base colour + occlusion-roughness-metal + normal per material; the lenses' normal map is
+    // 32x32, every other texture 512x512. Every primitive is normal-mapped with a TANGENT.
+    EXPECT_EQ(s.textures.size(), 15u);
+    size_t small = 0;
     for (const Texture& t : s.textures) {
-        EXPECT_EQ(t.width, 512u);
-        EXPECT_EQ(t.height, 512u);
+        small += t.width == 32u;
+        EXPECT_TRUE(t.width == 512u || t.width == 32u) << t.width;
+        EXPECT_EQ(t.height, t.width);
+    }
+    EXPECT_EQ(small, 1u);
+    for (const Material& m : s.materials) EXPECT_GE(m.normalTexture, 0) << m.name;
+    ASSERT_EQ(s.mesh.tangents.size(), s.mesh.positions.size());
+    for (size_t i = 0; i < s.mesh.tangents.size(); i += 97) {
+        EXPECT_NEAR(glm::length(glm::vec3(s.mesh.tangents[i])), 1.0f, 1e-4f) << i;
+        EXPECT_NEAR(glm::dot(glm::vec3(s.mesh.tangents[i]), s.mesh.normals[i]), 0.0f, 1e-4f) << i;
     }
     EXPECT_EQ(s.features(), uint32_t(graph::kSceneGeometry | graph::kSceneTextures));
 }
