@@ -224,6 +224,7 @@ void SceneGpu::upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
     std::vector<layout::Triangle> triangles(order.size());
     std::vector<layout::TrianglePositions> positions(order.size());
     bool alphaTriangles = false;  // a triangle whose material has an alpha test
+    mStochasticAlpha = false;
     for (size_t i = 0; i < order.size(); ++i) {
         const uint32_t t = order[i];
         const glm::uvec3 tri = mesh.triangles[t];  // indices were checked by the BVH build
@@ -237,6 +238,7 @@ void SceneGpu::upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
         // The traversal reads v0 anyway: its w tells it whether to look the material up.
         const bool alphaTested = gpuMaterials[material].params.w != 0.0f;
         alphaTriangles = alphaTriangles || alphaTested;
+        mStochasticAlpha = mStochasticAlpha || gpuMaterials[material].params.w < 0.0f;
         positions[i] = {glm::vec4(v0, alphaTested ? 1.0f : 0.0f),
                         glm::vec4(mesh.positions[tri.y] - v0, 0.0f),
                         glm::vec4(mesh.positions[tri.z] - v0, 0.0f)};

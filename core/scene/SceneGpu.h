@@ -125,6 +125,9 @@ public:
     // SCENE_HAS_TEXTURES / SCENE_HAS_EMISSIVE / SCENE_HAS_PUNCTUAL / SCENE_HAS_VERTEX_COLORS /
     // SCENE_HAS_ENVIRONMENT / SCENE_HAS_ALPHA = "0" or "1".
     std::vector<std::pair<std::string, std::string>> defines() const;
+    // A triangle's material is alphaMode BLEND: ray casts are stochastic (a new pass/stop
+    // decision per frame), so even primary visibility changes from frame to frame.
+    bool hasStochasticAlpha() const { return mStochasticAlpha; }
     // The mesh has per-vertex colours (scene_vertex_colors, SCENE_HAS_VERTEX_COLORS).
     bool hasVertexColors() const { return mVertexColors; }
     // The uploaded environment (zeros without one; a black map is not uploaded).
@@ -151,6 +154,7 @@ private:
     std::vector<uint32_t> mTriangleOrder;
     BvhStats mBvhStats;
     bool mVertexColors = false;
+    bool mStochasticAlpha = false;
     layout::Info mInfo{};
     layout::EnvironmentHeader mEnvironment{};
     uint32_t mFeatures = 0;
