@@ -135,8 +135,10 @@ std::pair<std::vector<glm::vec4>, double> traceEmbree(const EmbreeScene& s, cons
 
 std::pair<std::vector<glm::vec4>, double> traceGpu(gpu::Context& ctx, const scene::SceneGpu& s,
                                                    const RaySet& set) {
-    gpu::ComputePipeline pipe(ctx, "bench/ray_query.comp",
-                              {{"OCCLUSION", set.occlusion ? "1" : "0"}});
+    // The scene's defines: SCENE_HAS_ALPHA = 0 keeps the any-hit test out of opaque scenes.
+    gpu::ShaderDefines defines = s.defines();
+    defines.emplace_back("OCCLUSION", set.occlusion ? "1" : "0");
+    gpu::ComputePipeline pipe(ctx, "bench/ray_query.comp", defines);
     const auto n = uint32_t(set.rays.size());
     gpu::Buffer rays(ctx, n * sizeof(BenchRay));
     gpu::Buffer results(ctx, n * sizeof(glm::vec4));

@@ -259,7 +259,7 @@ TEST_F(SceneGpuTest, BuffersFeaturesAndDefines) {
     EXPECT_EQ(plain.features(), uint32_t(graph::kSceneGeometry));
     for (const auto& [name, value] : plain.defines()) EXPECT_EQ(value, "0") << name;
     const auto names = SceneGpu::resourceNames();
-    ASSERT_EQ(names.size(), 11u);
+    ASSERT_EQ(names.size(), 13u);
     const auto stats = plain.memoryStats();
     ASSERT_EQ(stats.size(), names.size());
     uint64_t total = 0;
@@ -284,8 +284,12 @@ TEST_F(SceneGpuTest, BuffersFeaturesAndDefines) {
     const SceneGpu full(ctx(), fullScene());
     EXPECT_EQ(full.features(), uint32_t(graph::kSceneGeometry | graph::kSceneEmissive |
                                         graph::kSceneTextures | graph::kScenePunctual));
-    for (const auto& [name, value] : full.defines())
-        EXPECT_EQ(value, name == "SCENE_HAS_VERTEX_COLORS" ? "0" : "1") << name;  // no COLOR_0
+    for (const auto& [name, value] : full.defines())  // no COLOR_0, no environment, no alpha
+        EXPECT_EQ(value, name == "SCENE_HAS_VERTEX_COLORS" || name == "SCENE_HAS_ENVIRONMENT" ||
+                                 name == "SCENE_HAS_ALPHA"
+                             ? "0"
+                             : "1")
+            << name;
     EXPECT_EQ(full.info().emitterCount, 2u);
     EXPECT_EQ(full.buffer("scene_texels").size(), (15u + 16u + 1u) * 4u);
 }
