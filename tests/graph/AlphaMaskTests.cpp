@@ -12,7 +12,10 @@
 //   invisible to GBuffer's and PathTrace's own primary rays; an opaque one does both;
 // - a checker of alpha 0 / 1 lets through half the light, each pixel all or nothing;
 // - BLEND with alpha a transmits 1 - a of the light in expectation over frames, noisy per
-//   frame, the same on a rerun; primary rays see it in a fraction a of the pixels.
+//   frame, the same on a rerun; primary rays see it in a fraction a of the pixels;
+// - a MASK checker that emits: shadow rays only and BRDF rays only agree (next-event estimation
+//   weights the emission by coverage).
+// Each of the last four fails with the any-hit test disabled (checked by hand).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -54,6 +57,7 @@ struct Card {
     // SCENE_HAS_ALPHA = 1 for a scene whose visible materials are all opaque.
     bool hiddenBlend = false;
     bool hiddenOpaque = false;  // the same triangle, opaque (same BVH, SCENE_HAS_ALPHA = 0)
+    float emission = 0.0f;      // > 0: the card is a double-sided emitter and the sun is off
 };
 
 scene::Scene cardScene(const std::string& name, const Card& card) {
@@ -72,6 +76,8 @@ scene::Scene cardScene(const std::string& name, const Card& card) {
     scene::Material& cm = s.materials[cardMaterial];
     cm.alphaMode = card.mode;
     cm.alphaCutoff = card.cutoff;
+    cm.emissive = glm::vec3(card.emission);
+    cm.doubleSided = card.emission > 0.0f;
     if (card.checker) {
         scene::Texture t;
         t.name = "checker";
@@ -106,7 +112,7 @@ scene::Scene cardScene(const std::string& name, const Card& card) {
     sun.name = "sun";
     sun.direction = {0, -1, 0};
     sun.intensity = kSunLux;
-    s.lights.push_back(sun);
+    if (card.emission == 0.0f) s.lights.push_back(sun);
     for (const glm::vec3& p : s.mesh.positions) s.bounds.grow(p);
     // cameras[0]: between card and floor, looking down (sees the floor lit through the card).
     scene::CameraDesc below;
@@ -139,10 +145,11 @@ protected:
     // `frames` frames of GBuffer + PathTrace (or PathTrace's own camera rays without GBuffer),
     // seen from cameras[camera].
     static std::vector<Frame> render(test::LoadedScene& s, int camera, bool gbuffer, int frames,
-                                     int spp = 1, int bounces = 0, uint64_t seed = 1) {
+                                     int spp = 1, int bounces = 0, uint64_t seed = 1,
+                                     const std::string& extraParams = "") {
         const std::string pt = R"({ "name": "pt", "type": "PathTrace", "params": { "spp": )" +
                                std::to_string(spp) + R"(, "maxBounces": )" +
-                               std::to_string(bounces) + " } }";
+                               std::to_string(bounces) + extraParams + " } }";
         const std::string text =
             gbuffer ? R"({ "version": 1, "name": "alpha", "passes": [ { "name": "gb", "type": )"
                       R"("GBuffer" }, )" +
@@ -316,6 +323,46 @@ TEST_F(AlphaMaskTest, BlendShadowTransmitsOneMinusAlpha) {
     const std::vector<Frame> top = render(s, kAbove, true, 2);
     for (const Frame& f : top) EXPECT_NEAR(cardFraction(f.material), 0.3, 0.07);
     EXPECT_FALSE(sameBits(top[0].material, top[1].material));
+}
+
+// A MASK checker card that emits (both sides) over the floor, no other light: next-event
+// estimation samples points on the whole card, BRDF rays pass through its holes. The two
+// single-strategy estimators (emitterSampling light / brdf) must agree: next-event estimation
+// weights the sampled point's emission by its coverage (0 in a hole). Without that weight the
+// shadow-ray estimate would count the holes' emission too, twice the BRDF estimate. Compared per
+// pixel (the difference of two independent estimates of the same value), 32 x 32 x 16 spp x 2.
+TEST_F(AlphaMaskTest, MaskedEmitterStrategiesAgree) {
+    Card light;
+    light.mode = scene::AlphaMode::Mask;
+    light.checker = true;
+    light.emission = 3.0f;
+    test::LoadedScene& s = scene("alpha:masked-emitter", light);
+    ASSERT_TRUE(s.gpu->features() & kSceneEmissive);
+    auto mean = [&](const char* strategy, uint64_t seed) {
+        const std::string params = std::string(R"(, "emitterSampling": ")") + strategy + "\"";
+        std::vector<double> image;
+        for (const Frame& f : render(s, kBelow, true, 2, 16, 0, seed, params)) {
+            image.resize(f.radiance.size() / 4, 0.0);
+            for (size_t i = 0; i < image.size(); ++i) image[i] += 0.5 * f.radiance[4 * i];
+        }
+        return image;
+    };
+    const std::vector<double> shadowRays = mean("light", 3), brdfRays = mean("brdf", 4);
+    double sum = 0, sum2 = 0, level = 0;
+    const double n = double(shadowRays.size());
+    for (size_t i = 0; i < shadowRays.size(); ++i) {
+        const double d = shadowRays[i] - brdfRays[i];
+        sum += d;
+        sum2 += d * d;
+        level += brdfRays[i] / n;
+    }
+    const double meanDiff = sum / n;
+    const double stderrDiff = std::sqrt(std::max(0.0, sum2 / n - meanDiff * meanDiff) / n);
+    std::printf("[ alpha ] masked emitter: light - brdf = %.5f +- %.5f (level %.4f)\n", meanDiff,
+                stderrDiff, level);
+    ASSERT_GT(level, 0.05);
+    EXPECT_LT(std::abs(meanDiff), 5.0 * stderrDiff + 1e-3 * level);
+    EXPECT_LT(std::abs(meanDiff), 0.1 * level) << "a missing coverage weight doubles one side";
 }
 
 }  // namespace
