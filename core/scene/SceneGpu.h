@@ -120,7 +120,8 @@ public:
     static std::vector<std::string> resourceNames();
     // graph::SceneFeature bits of what was uploaded: geometry (any triangle), emissive (an
     // emitting triangle), textures (a material samples a texture with texels), punctual (a
-    // light with power > 0).
+    // light with power > 0), environment, alpha (a triangle's material is MASK with cutoff > 0
+    // or BLEND).
     uint32_t features() const { return mFeatures; }
     // SCENE_HAS_TEXTURES / SCENE_HAS_EMISSIVE / SCENE_HAS_PUNCTUAL / SCENE_HAS_VERTEX_COLORS /
     // SCENE_HAS_ENVIRONMENT / SCENE_HAS_ALPHA = "0" or "1".
