@@ -43,7 +43,7 @@ clean:
 # keep allocations until exit, which LeakSanitizer reports (and turns into exit code 1).
 # -O0 -g1: the cheapest build that still gives ASan reports with file:line (CI time budget); only
 # the test files of these suites are compiled (fovea_input_tests, tests/CMakeLists.txt).
-SANITIZE_TESTS ?= Environment|TextureView|Tangents|SceneLoad|SceneFeatures|ShaderCompiler|SceneGltfSynthetic|SceneGltfLimits|SceneBuiltin|GraphDesc|Param|Compiler|BadGraph|JsonUtil|Camera|BvhBuild|LightTable|CliInput|CliValidate
+SANITIZE_TESTS ?= Environment|TextureView|Tangents|SceneLoad|SceneFeatures|ShaderCompiler|SceneGltfSynthetic|SceneGltfAlpha|SceneGltfLimits|SceneBuiltin|GraphDesc|Param|Compiler|BadGraph|JsonUtil|Camera|BvhBuild|LightTable|CliInput|CliValidate
 sanitize-ci: deps
 	cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O0 -g1" -DFOVEA_SANITIZE=ON
 	cmake --build build-asan -j $(JOBS) --target fovea_input_tests

@@ -35,6 +35,7 @@ namespace fovea::graph {
 
 // Scene features a pass can require (core/scene/SceneFeatures.h). A pass whose needs the loaded
 // scene does not meet is culled (with a reason) instead of running on missing data.
+using scene::kSceneAlpha;
 using scene::kSceneEmissive;
 using scene::kSceneEnvironment;
 using scene::kSceneGeometry;

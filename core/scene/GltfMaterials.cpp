@@ -157,9 +157,14 @@ Material MaterialTable::convert(size_t index) {
         }
         m.emissive = glm::vec3(emission);
     }
-    if (src.alphaMode != "OPAQUE") {
-        mWarnings.push_back(pointer + "/alphaMode: " + src.alphaMode +
-                            " is not supported; the material is drawn opaque");
+    // glTF 2.0 §3.9.4 (alpha coverage); the validator accepted only the three modes and a
+    // finite alphaCutoff >= 0 (schema minimum 0, default 0.5). Any cutoff above 1 hides every
+    // texel (alpha <= 1); capping it at 2 keeps the float finite without changing that.
+    if (src.alphaMode == "MASK") {
+        m.alphaMode = AlphaMode::Mask;
+        m.alphaCutoff = float(std::clamp(src.alphaCutoff, 0.0, 2.0));
+    } else if (src.alphaMode == "BLEND") {
+        m.alphaMode = AlphaMode::Blend;  // traced as stochastic transparency (docs/scenes.md)
     }
     return m;
 }

@@ -295,6 +295,9 @@ void validateMaterials(const GltfJson& gltf) {
                 material.issueAt("alphaMode", "invalid alpha mode " + quote(*mode));
             }
         }
+        // Schema minimum 0 (§3.9.4: texels with alpha >= cutoff are opaque); no maximum, a cutoff
+        // above 1 hides the whole material.
+        checkRange(material, "alphaCutoff", 0.0, HUGE_VAL, "finite and non-negative");
     }
 }
 

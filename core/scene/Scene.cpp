@@ -27,6 +27,7 @@ uint32_t Scene::features() const {
         if (!used[i]) continue;
         const Material& m = materials[i];
         if (m.isEmissive()) bits |= kSceneEmissive;
+        if (m.hasAlphaTest()) bits |= kSceneAlpha;
         if (m.baseColorTexture >= 0 || m.emissiveTexture >= 0 || m.metallicRoughnessTexture >= 0 ||
             m.normalTexture >= 0) {
             bits |= kSceneTextures;

@@ -28,6 +28,10 @@ struct Bounds {
     glm::vec3 extent() const { return empty() ? glm::vec3(0.0f) : max - min; }
 };
 
+// glTF 2.0 §3.9.4 alpha coverage: OPAQUE ignores alpha; MASK drops texels whose alpha is below
+// alphaCutoff; BLEND is traced as stochastic transparency (docs/scenes.md "Alpha").
+enum class AlphaMode : uint32_t { Opaque = 0, Mask = 1, Blend = 2 };
+
 // glTF 2.0 metallic-roughness material. Texture fields index Scene::textures (-1 = none).
 struct Material {
     std::string name;
@@ -45,7 +49,15 @@ struct Material {
     // How each texture is read: its glTF sampler and KHR_texture_transform (TextureView.h).
     TextureView baseColorView, emissiveView, metallicRoughnessView, normalView;
     bool doubleSided = false;
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    float alphaCutoff = 0.5f;  // glTF default; read only in MASK mode (>= 0, validated)
     bool isEmissive() const { return emissive.r > 0.0f || emissive.g > 0.0f || emissive.b > 0.0f; }
+    // Some texels may let rays through: BLEND, or MASK with a cutoff above 0 (alpha >= 0 always
+    // meets a cutoff of 0, so that MASK draws exactly like OPAQUE).
+    bool hasAlphaTest() const {
+        return alphaMode == AlphaMode::Blend ||
+               (alphaMode == AlphaMode::Mask && alphaCutoff > 0.0f);
+    }
 };
 
 // Decoded 8-bit RGBA texels, row-major, top row first (glTF UV origin is the top-left).

@@ -16,9 +16,11 @@ enum SceneFeature : uint32_t {
     kScenePunctual = 1u << 3,     // point/spot/directional lights
     kSceneStereo = 1u << 4,       // a stereo camera rig
     kSceneEnvironment = 1u << 5,  // an environment map that emits (--env)
+    kSceneAlpha = 1u << 6,        // materials with alphaMode MASK (cutoff > 0) or BLEND
 };
 
-// "geometry", "emissive", "textures", "punctual-lights", "stereo", "environment" for the set bits.
+// "geometry", "emissive", "textures", "punctual-lights", "stereo", "environment",
+// "alpha" for the set bits.
 std::vector<std::string> sceneFeatureNames(uint32_t mask);
 
 }  // namespace fovea::scene

@@ -50,6 +50,15 @@ int validTexture(int index, const std::vector<Texture>& textures) {
     return index >= 0 && size_t(index) < textures.size() ? index : -1;
 }
 
+// layout::Material::params.w, what the traversal's alpha test compares alpha against (glTF 2.0
+// §3.9.4): a ray passes through a texel whose alpha is below it. 0 = opaque (alpha >= 0 always
+// meets it; MASK with cutoff 0 is the same); > 0 = MASK's alphaCutoff; -1 = BLEND, whose
+// threshold is a fresh random number per ray and hit (docs/scenes.md "Alpha").
+float alphaThreshold(const Material& m) {
+    if (!m.hasAlphaTest()) return 0.0f;
+    return m.alphaMode == AlphaMode::Blend ? -1.0f : m.alphaCutoff;
+}
+
 bool hasTexels(const Texture& t) {
     const size_t texels = size_t(t.width) * t.height;
     return texels > 0 && t.rgba8.size() >= texels * 4;
@@ -195,7 +204,8 @@ void SceneGpu::upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
         layout::Material g{};
         g.baseColor = mat.baseColor;
         g.emissive = glm::vec4(mat.emissive, m < density.size() ? float(density[m]) : 0.0f);
-        g.params = glm::vec4(mat.metallic, mat.roughness, mat.doubleSided ? 1.0f : 0.0f, 0.0f);
+        g.params = glm::vec4(mat.metallic, mat.roughness, mat.doubleSided ? 1.0f : 0.0f,
+                             alphaThreshold(mat));
         g.textures = glm::ivec4(validTexture(mat.baseColorTexture, scene.textures),
                                 validTexture(mat.metallicRoughnessTexture, scene.textures),
                                 validTexture(mat.emissiveTexture, scene.textures),
@@ -239,6 +249,8 @@ void SceneGpu::upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
         colors[v] = packColor(v < mesh.colors.size() ? mesh.colors[v] : glm::vec4(1.0f));
     std::vector<layout::Triangle> triangles(order.size());
     std::vector<layout::TrianglePositions> positions(order.size());
+    bool alphaTriangles = false;  // a triangle whose material has an alpha test
+    mStochasticAlpha = false;
     for (size_t i = 0; i < order.size(); ++i) {
         const uint32_t t = order[i];
         const glm::uvec3 tri = mesh.triangles[t];  // indices were checked by the BVH build
@@ -249,7 +261,12 @@ void SceneGpu::upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
                                std::to_string(materials.size()));
         triangles[i] = {tri, material};
         const glm::vec3 v0 = mesh.positions[tri.x];
-        positions[i] = {glm::vec4(v0, 0.0f), glm::vec4(mesh.positions[tri.y] - v0, 0.0f),
+        // The traversal reads v0 anyway: its w tells it whether to look the material up.
+        const bool alphaTested = gpuMaterials[material].params.w != 0.0f;
+        alphaTriangles = alphaTriangles || alphaTested;
+        mStochasticAlpha = mStochasticAlpha || gpuMaterials[material].params.w < 0.0f;
+        positions[i] = {glm::vec4(v0, alphaTested ? 1.0f : 0.0f),
+                        glm::vec4(mesh.positions[tri.y] - v0, 0.0f),
                         glm::vec4(mesh.positions[tri.z] - v0, 0.0f)};
     }
 
@@ -312,6 +329,7 @@ void SceneGpu::upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
     const EnvironmentUpload environment =
         packEnvironment(scene, lights, mInfo.radius, mEnvironment);
     if (!environment.texels.empty()) mFeatures |= kSceneEnvironment;
+    if (alphaTriangles) mFeatures |= kSceneAlpha;
     mInfo.features = mFeatures;
 
     mBuffers.clear();
@@ -351,7 +369,8 @@ std::vector<std::pair<std::string, std::string>> SceneGpu::defines() const {
             {"SCENE_HAS_PUNCTUAL", flag(kScenePunctual)},
             {"SCENE_HAS_VERTEX_COLORS", mVertexColors ? "1" : "0"},
             {"SCENE_HAS_NORMAL_MAPS", mNormalMaps ? "1" : "0"},
-            {"SCENE_HAS_ENVIRONMENT", flag(kSceneEnvironment)}};
+            {"SCENE_HAS_ENVIRONMENT", flag(kSceneEnvironment)},
+            {"SCENE_HAS_ALPHA", flag(kSceneAlpha)}};
 }
 
 const gpu::Buffer& SceneGpu::buffer(std::string_view name) const {

@@ -37,14 +37,15 @@ struct Triangle {  // scene_triangles, in Bvh::triangleOrder()
     uint32_t material;
 };
 struct TrianglePositions {  // scene_bvh_triangles: what the intersection loop reads
-    glm::vec4 v0;           // xyz; w unused
+    glm::vec4 v0;           // xyz; w 1 = the material has an alpha test (params.w != 0), else 0
     glm::vec4 e1;           // v1 - v0
     glm::vec4 e2;           // v2 - v0
 };
 struct Material {         // scene_materials
     glm::vec4 baseColor;  // linear RGBA factor
     glm::vec4 emissive;   // rgb linear factor; w = emitted power per unit area (LightTable)
-    glm::vec4 params;     // x metallic, y roughness, z doubleSided (0/1), w unused
+    glm::vec4 params;     // x metallic, y roughness, z doubleSided (0/1), w alpha threshold:
+                          // 0 opaque, > 0 MASK cutoff, -1 BLEND (glTF 2.0 §3.9.4)
     glm::ivec4 textures;  // x baseColor (sRGB), y metallicRoughness (linear), z emissive (sRGB),
                           // w normal (linear, tangent space); -1 = none
 };
@@ -130,10 +131,15 @@ public:
     static std::vector<std::string> resourceNames();
     // graph::SceneFeature bits of what was uploaded: geometry (any triangle), emissive (an
     // emitting triangle), textures (a material samples a texture with texels), punctual (a
-    // light with power > 0).
+    // light with power > 0), environment, alpha (a triangle's material is MASK with cutoff > 0
+    // or BLEND).
     uint32_t features() const { return mFeatures; }
-    // SCENE_HAS_TEXTURES / SCENE_HAS_EMISSIVE / SCENE_HAS_PUNCTUAL = "0" or "1".
+    // SCENE_HAS_TEXTURES / SCENE_HAS_EMISSIVE / SCENE_HAS_PUNCTUAL / SCENE_HAS_VERTEX_COLORS /
+    // SCENE_HAS_ENVIRONMENT / SCENE_HAS_ALPHA = "0" or "1".
     std::vector<std::pair<std::string, std::string>> defines() const;
+    // A triangle's material is alphaMode BLEND: ray casts are stochastic (a new pass/stop
+    // decision per frame), so even primary visibility changes from frame to frame.
+    bool hasStochasticAlpha() const { return mStochasticAlpha; }
     // The mesh has per-vertex colours (scene_vertex_colors, SCENE_HAS_VERTEX_COLORS).
     bool hasVertexColors() const { return mVertexColors; }
     // A material reads a normal texture (scene_tangents, SCENE_HAS_NORMAL_MAPS).
@@ -163,6 +169,7 @@ private:
     BvhStats mBvhStats;
     bool mVertexColors = false;
     bool mNormalMaps = false;
+    bool mStochasticAlpha = false;
     layout::Info mInfo{};
     layout::EnvironmentHeader mEnvironment{};
     uint32_t mFeatures = 0;

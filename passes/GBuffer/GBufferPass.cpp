@@ -77,6 +77,7 @@ void GBufferPass::compile(graph::CompileContext& ctx) {
     // A scene without textures / emitters compiles those paths out (SceneGpu::defines).
     std::vector<std::pair<std::string, std::string>> defines;
     if (ctx.scene()) defines = ctx.scene()->defines();
+    mStochastic = ctx.scene() && ctx.scene()->hasStochasticAlpha();
     mVariant.clear();
     for (const auto& [name, value] : defines) {
         std::string feature = name.rfind("SCENE_HAS_", 0) == 0 ? name.substr(10) : name;

@@ -18,13 +18,15 @@ public:
     void execute(graph::ExecuteContext& ctx) override;
     // Outputs depend only on the scene, the camera (both in the graph's cache key for a pass
     // with scene needs: jitter and previous matrices included), the layout input and the
-    // parameters - never on the frame index.
-    bool cacheable() const override { return true; }
+    // parameters - and on the frame index when the scene has BLEND materials (stochastic
+    // transparency draws a new layer every frame: a cached one would never converge).
+    bool cacheable() const override { return !mStochastic; }
     // The scene features the shader was compiled with, e.g. "emissive,no-punctual,no-textures".
     std::string variant() const override { return mVariant; }
 
 private:
     bool mJitter = true;
+    bool mStochastic = false;  // the scene has BLEND materials (SceneGpu::hasStochasticAlpha)
     std::string mVariant;
     std::unique_ptr<gpu::ComputePipeline> mPipeline;
     std::unique_ptr<sampling::SampleLayoutInput> mLayoutInput;

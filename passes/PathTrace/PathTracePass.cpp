@@ -131,6 +131,7 @@ void PathTracePass::compile(graph::CompileContext& ctx) {
                feature(defines, "SCENE_HAS_PUNCTUAL", "punctual") + "," +
                feature(defines, "SCENE_HAS_TEXTURES", "textures") +
                (scene->features() & scene::kSceneEnvironment ? ",environment" : "") +
+               (scene->features() & scene::kSceneAlpha ? ",alpha" : "") +
                ",bounces=" + std::to_string(mMaxBounces) +
                ",primary=" + (mUseVisibility ? "gbuffer" : "own") +
                (mUseLayout ? ",layout" : ",spp=" + std::to_string(mSpp)) +

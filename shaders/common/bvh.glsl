@@ -3,10 +3,20 @@
 // their entry distances; occlusion stops at the first hit. Triangles: Moeller-Trumbore in its
 // division-free form (one division per accepted hit). Rays are `origin + t * direction` with
 // 0 <= tMin < tMax; the direction need not be normalized (t is in its units).
+//
+// Alpha-tested materials (SCENE_HAS_ALPHA, glTF MASK / BLEND): a candidate hit on a triangle
+// flagged in v0.w runs scene_sample.glsl's any-hit test and is skipped where the ray passes
+// through. `alphaSeed` picks BLEND's random decisions: callers hash it per ray (pixel, frame,
+// sample, bounce) so reruns are bit-identical; the overloads without it hash the ray itself.
+// SCENE_HAS_ALPHA 0 compiles the test out: queries in opaque scenes are the code they were.
 #ifndef FOVEA_BVH_GLSL
 #define FOVEA_BVH_GLSL
 
 #include "scene_data.glsl"
+#if SCENE_HAS_ALPHA
+#include "random.glsl"
+#include "scene_sample.glsl"  // sceneAlphaPassesThrough (materials, textures, vertex colours)
+#endif
 
 const uint kBvhNoHit = 0xFFFFFFFFu;
 const float kBvhMiss = 3.4e38;  // box entry distance reported for a miss
@@ -85,8 +95,31 @@ bool bvhIntersectStoredTriangle(uint triangle, vec3 origin, vec3 direction, floa
                                 barycentrics);
 }
 
-// Closest triangle hit in (tMin, tMax). On a miss returns false and hit.triangle = kBvhNoHit.
-bool bvhClosestHit(vec3 origin, vec3 direction, float tMin, float tMax, out BvhHit hit) {
+#if SCENE_HAS_ALPHA
+// A candidate hit the ray passes through (alpha test). v0.w was loaded with the triangle's
+// vertices: triangles of opaque materials (0) stop here without a material lookup.
+bool bvhPassesThrough(uint triangle, vec2 barycentrics, uint alphaSeed) {
+    return scene_bvh_triangles.positions[3u * triangle].w != 0.0 &&
+           sceneAlphaPassesThrough(triangle, barycentrics, alphaSeed);
+}
+#endif
+
+// The seed of the overloads without one: a hash of the ray's bits, so distinct rays decide
+// independently and the same ray decides the same way.
+uint bvhRaySeed(vec3 origin, vec3 direction) {
+#if SCENE_HAS_ALPHA
+    uvec3 o = floatBitsToUint(origin), d = floatBitsToUint(direction);
+    return hashCombine(hashCombine(hashCombine(pcgHash(o.x), o.y), o.z),
+                       hashCombine(hashCombine(pcgHash(d.x), d.y), d.z));
+#else
+    return 0u;  // unused: nothing is alpha-tested
+#endif
+}
+
+// Closest triangle hit in (tMin, tMax) that the ray does not pass through. On a miss returns
+// false and hit.triangle = kBvhNoHit.
+bool bvhClosestHit(vec3 origin, vec3 direction, float tMin, float tMax, uint alphaSeed,
+                   out BvhHit hit) {
     hit.t = tMax;
     hit.triangle = kBvhNoHit;
     hit.barycentrics = vec2(0.0);
@@ -107,7 +140,13 @@ bool bvhClosestHit(vec3 origin, vec3 direction, float tMin, float tMax, out BvhH
             for (uint i = node.index; i < node.index + node.count; ++i) {
                 float t;
                 vec2 bary;
-                if (bvhIntersectStoredTriangle(i, origin, direction, tMin, hit.t, t, bary)) {
+                // The alpha test only where it is compiled in, so that opaque scenes get the
+                // very same instructions as before it existed.
+                if (bvhIntersectStoredTriangle(i, origin, direction, tMin, hit.t, t, bary)
+#if SCENE_HAS_ALPHA
+                    && !bvhPassesThrough(i, bary, alphaSeed)
+#endif
+                ) {
                     hit.t = t;
                     hit.triangle = i;
                     hit.barycentrics = bary;
@@ -151,9 +190,13 @@ bool bvhClosestHit(vec3 origin, vec3 direction, float tMin, float tMax, out BvhH
     return hit.triangle != kBvhNoHit;
 }
 
-// True when any triangle lies on the ray within (tMin, tMax): shadow rays pass the light's
-// distance (slightly shortened) as tMax.
-bool bvhOccluded(vec3 origin, vec3 direction, float tMin, float tMax) {
+bool bvhClosestHit(vec3 origin, vec3 direction, float tMin, float tMax, out BvhHit hit) {
+    return bvhClosestHit(origin, direction, tMin, tMax, bvhRaySeed(origin, direction), hit);
+}
+
+// True when any triangle the ray does not pass through lies on it within (tMin, tMax): shadow
+// rays pass the light's distance (slightly shortened) as tMax.
+bool bvhOccluded(vec3 origin, vec3 direction, float tMin, float tMax, uint alphaSeed) {
     vec3 invDir = bvhSafeInverse(direction);
     uint stackNode[kBvhMaxDepth];
     uint sp = 0u;
@@ -167,7 +210,11 @@ bool bvhOccluded(vec3 origin, vec3 direction, float tMin, float tMax) {
             for (uint i = node.index; i < node.index + node.count; ++i) {
                 float t;
                 vec2 bary;
-                if (bvhIntersectStoredTriangle(i, origin, direction, tMin, tMax, t, bary))
+                if (bvhIntersectStoredTriangle(i, origin, direction, tMin, tMax, t, bary)
+#if SCENE_HAS_ALPHA
+                    && !bvhPassesThrough(i, bary, alphaSeed)
+#endif
+                )
                     return true;
             }
         } else {
@@ -193,6 +240,10 @@ bool bvhOccluded(vec3 origin, vec3 direction, float tMin, float tMax) {
         nodeIndex = stackNode[--sp];
     }
     return false;
+}
+
+bool bvhOccluded(vec3 origin, vec3 direction, float tMin, float tMax) {
+    return bvhOccluded(origin, direction, tMin, tMax, bvhRaySeed(origin, direction));
 }
 
 // Origin for a ray leaving a surface at p with geometric normal n (pointing to the side the

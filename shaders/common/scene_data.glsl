@@ -4,8 +4,9 @@
 // followed by a 4-byte scalar shares one 16-byte slot in std430, exactly like glm::vec3 + float.
 //
 // Compile with SceneGpu::defines(): SCENE_HAS_TEXTURES / SCENE_HAS_EMISSIVE / SCENE_HAS_PUNCTUAL
-// / SCENE_HAS_VERTEX_COLORS / SCENE_HAS_NORMAL_MAPS / SCENE_HAS_ENVIRONMENT = 0 drop the buffers and code paths a scene
-// does not need. Without defines everything is on, which is valid for any scene (empty buffers
+// / SCENE_HAS_VERTEX_COLORS / SCENE_HAS_NORMAL_MAPS / SCENE_HAS_ENVIRONMENT / SCENE_HAS_ALPHA = 0
+// drop the buffers and code paths a scene does not need. Without defines everything is on,
+// which is valid for any scene (empty buffers
 // are still bound; an empty scene_vertex_colors reads as white, see sceneVertexColor; an empty
 // scene_environment has width 0 and emits nothing).
 #ifndef FOVEA_SCENE_DATA_GLSL
@@ -28,6 +29,11 @@
 #endif
 #ifndef SCENE_HAS_ENVIRONMENT
 #define SCENE_HAS_ENVIRONMENT 1  // without one, scene_environment's width is 0: nothing emits
+#endif
+#ifndef SCENE_HAS_ALPHA
+// Alpha-tested materials (glTF MASK / BLEND): the traversal's any-hit test in bvh.glsl. On for a
+// scene without any, it only reads each candidate hit's v0.w flag (0 for opaque triangles).
+#define SCENE_HAS_ALPHA 1
 #endif
 
 const uint kBvhInternalNode = 0xFFFFFFFFu;  // BvhNode.count of an internal node
@@ -59,7 +65,8 @@ struct BvhNode {
 struct SceneMaterial {
     vec4 baseColor;  // linear RGBA factor
     vec4 emissive;   // rgb linear factor; w = emitted power per unit area (light selection)
-    vec4 params;     // x metallic, y roughness, z doubleSided (0/1)
+    vec4 params;     // x metallic, y roughness, z doubleSided (0/1), w alpha threshold: 0 opaque,
+                     // > 0 MASK cutoff, < 0 BLEND (sceneAlphaPassesThrough)
     ivec4 textures;  // x baseColor (sRGB), y metallicRoughness (linear), z emissive (sRGB),
                      // w normal (linear, tangent space); -1 none
 };
@@ -137,6 +144,7 @@ layout(std430, binding = 19) readonly buffer SceneBvh {
     BvhNode nodes[];
 } scene_bvh;
 // Per GPU triangle: v0, v1 - v0, v2 - v0 (3 vec4s): the leaf loop streams them contiguously.
+// v0.w = 1 when the triangle's material is alpha-tested (params.w != 0), else 0.
 layout(std430, binding = 20) readonly buffer SceneBvhTriangles {
     vec4 positions[];
 } scene_bvh_triangles;

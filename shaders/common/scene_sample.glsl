@@ -13,6 +13,9 @@
 
 #include "environment.glsl"
 #include "scene_data.glsl"
+#if SCENE_HAS_ALPHA
+#include "random.glsl"
+#endif
 
 const float kSceneInfiniteDistance = 1e30;  // shadow-ray tMax of directional lights
 const uint kSceneEnvironmentLight = 0xFFFFFFFFu;  // SceneLightSample.light of the environment
@@ -351,6 +354,68 @@ void sceneApplyNormalMap(inout SceneSurface s) {
 #endif
 }
 
+#if SCENE_HAS_ALPHA
+// --- Alpha coverage (glTF 2.0 §3.9.4), the any-hit test of bvh.glsl --------------------------
+// A ray passes through a texel of an alpha-tested material when alpha < threshold, alpha being
+// §3.9.2's baseColorFactor.a x baseColorTexture.a x COLOR_0.a. The threshold is params.w: MASK's
+// alphaCutoff, or for BLEND 1 - u with u uniform in [0, 1) hashed from (the ray's seed, the
+// triangle), so the ray passes with probability P(alpha < 1 - u) = 1 - alpha: stochastic
+// transparency, noisy per frame and converging to the alpha-blended image in expectation
+// (docs/scenes.md "Alpha"). Each ray hashes its own seed, each surface it meets gets its own u.
+
+// Alpha at barycentrics b of `triangle` with material m: the operations of sceneSurface and
+// sceneSurfaceMaterial in the same order (so shading and the test agree), reading only what
+// alpha needs (the uv and COLOR_0.a, no normals, no sRGB decode: alpha is linear).
+float sceneAlphaOf(SceneTriangle tri, SceneMaterial m, vec2 b) {
+    float alpha = m.baseColor.a;
+#if SCENE_HAS_TEXTURES
+    if (m.textures.x >= 0) {
+        SceneVertex va = scene_vertices.vertices[tri.indices.x];
+        SceneVertex vb = scene_vertices.vertices[tri.indices.y];
+        SceneVertex vc = scene_vertices.vertices[tri.indices.z];
+        vec3 w = vec3(1.0 - b.x - b.y, b.x, b.y);
+        vec2 uv = vec2(va.positionU.w, va.normalV.w) * w.x +
+                  vec2(vb.positionU.w, vb.normalV.w) * w.y +
+                  vec2(vc.positionU.w, vc.normalV.w) * w.z;
+        // Through the base colour's view (sampler, KHR_texture_transform) as shading reads it.
+        alpha *= sceneSampleMaterialTexture(tri.material, kSceneSlotBaseColor, m.textures.x, uv,
+                                            false)
+                     .a;
+    }
+#endif
+#if SCENE_HAS_VERTEX_COLORS
+    float ca = sceneVertexColor(tri.indices.x).a;
+    alpha *= ca + (sceneVertexColor(tri.indices.y).a - ca) * b.x +
+             (sceneVertexColor(tri.indices.z).a - ca) * b.y;
+#endif
+    return alpha;
+}
+
+// True when a ray with this seed passes through `triangle` at barycentrics b. Opaque materials
+// (threshold 0) never let a ray through and read no texel.
+bool sceneAlphaPassesThrough(uint triangle, vec2 b, uint seed) {
+    SceneTriangle tri = scene_triangles.triangles[triangle];
+    SceneMaterial m = scene_materials.materials[tri.material];
+    float threshold = m.params.w;
+    if (threshold == 0.0) return false;
+    // u < 1, so a BLEND threshold lies in (0, 1]: alpha 1 never passes, alpha 0 always does.
+    if (threshold < 0.0) threshold = 1.0 - uintToUnitFloat(hashCombine(seed, triangle));
+    return sceneAlphaOf(tri, m, b) < threshold;
+}
+
+// The fraction of rays that stop at `triangle` at b: 1 opaque, 0 or 1 for MASK, alpha for
+// BLEND. Light sampling weights an emitter's radiance by it, so next-event estimation sees the
+// same emission as the rays that pass or stop at the emitter (MIS stays consistent).
+float sceneAlphaCoverage(uint triangle, vec2 b) {
+    SceneTriangle tri = scene_triangles.triangles[triangle];
+    SceneMaterial m = scene_materials.materials[tri.material];
+    if (m.params.w == 0.0) return 1.0;
+    float alpha = sceneAlphaOf(tri, m, b);
+    if (m.params.w > 0.0) return alpha < m.params.w ? 0.0 : 1.0;
+    return clamp(alpha, 0.0, 1.0);
+}
+#endif
+
 // Radiance leaving a surface of this material; back faces emit only when double-sided.
 vec3 sceneEmission(uint material, vec2 uv, bool frontFacing) {
 #if SCENE_HAS_EMISSIVE
@@ -485,6 +550,9 @@ bool sceneSampleTableLight(vec3 position, vec4 u, inout SceneLightSample s) {
         float cosLight = -wn / crLen;  // crLen > 0
         SceneSurface surf = sceneSurface(e.light, bary);
         s.radiance = sceneEmission(surf.material, surf.uv, cosLight > 0.0);
+#if SCENE_HAS_ALPHA
+        s.radiance *= sceneAlphaCoverage(e.light, bary);
+#endif
         if (all(equal(s.radiance, vec3(0.0)))) return false;
         s.direction = w;
         s.distance = t;
@@ -506,6 +574,9 @@ bool sceneSampleTableLight(vec3 position, vec4 u, inout SceneLightSample s) {
     float cosLight = dot(cr / crLen, -s.direction);  // crLen > 0
     SceneSurface surf = sceneSurface(e.light, bary);
     s.radiance = sceneEmission(surf.material, surf.uv, cosLight > 0.0);
+#if SCENE_HAS_ALPHA
+    s.radiance *= sceneAlphaCoverage(e.light, bary);
+#endif
     // Area -> solid angle: d^2 / (area |cos|); a grazing sample has no finite pdf.
     if (!(abs(cosLight) > 0.0) || all(equal(s.radiance, vec3(0.0)))) return false;
     s.pdf = e.pdf * d2 / (area * abs(cosLight));

@@ -15,6 +15,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "../common/bvh.glsl"
 #include "../common/camera.glsl"
+#include "../common/random.glsl"  // the alpha test's seed
 #include "../common/sample_layout.glsl"
 #include "../common/scene_sample.glsl"
 #define VISUAL_POLAR_PARAMS
@@ -93,7 +94,13 @@ void main() {
 
     uint flags = kFlagTraced | (eye << 8);
     BvhHit hit;
-    if (!bvhClosestHit(origin, dir, 0.0, kSceneInfiniteDistance, hit)) {
+    // BLEND's stochastic decisions (bvh.glsl): new per pixel and frame, the same on a rerun.
+#if SCENE_HAS_ALPHA
+    uint alphaSeed = hashCombine(pcgHash(camera_info.frame.x), uint(p.y) * pc.size.x + uint(p.x));
+#else
+    const uint alphaSeed = 0u;  // unused: nothing is alpha-tested
+#endif
+    if (!bvhClosestHit(origin, dir, 0.0, kSceneInfiniteDistance, alphaSeed, hit)) {
         if (!sceneHasEnvironment()) {
             writeEmpty(p, uvec4(0u, 0u, 0u, flags));
             return;

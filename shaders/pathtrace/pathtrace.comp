@@ -103,6 +103,15 @@ float rand(uint vertex, uint dim) {
     return uintToUnitFloat(hashCombine(gSampleSeed, vertex * kDimsPerVertex + dim));
 }
 
+// Seed of the alpha test's BLEND decisions (bvh.glsl) for the shadow ray (kind 0) or the BRDF /
+// camera ray (kind 1) leaving `vertex` (0 = the camera): an own hash stream, far from rand()'s
+// small indices, so adding it changed no other random number. Unused (compiled out) when the
+// scene has no alpha-tested material.
+const uint kAlphaSeedBase = 0xA1FA0000u;
+uint alphaSeed(uint vertex, uint kind) {
+    return hashCombine(gSampleSeed, kAlphaSeedBase + 2u * vertex + kind);
+}
+
 #ifndef PATHTRACE_STRATIFY_LIGHT
 #define PATHTRACE_STRATIFY_LIGHT 0
 #endif
@@ -238,7 +247,8 @@ vec3 nextEvent(Vertex v, uint vertex, bool last) {
                                              !last);
     if (w <= 0.0) return vec3(0.0);
     COUNT_RAY(vertex == 1u ? 1 : 3);
-    if (bvhOccluded(p, ls.direction, 0.0, ls.distance * kShadowShorten)) return vec3(0.0);
+    if (bvhOccluded(p, ls.direction, 0.0, ls.distance * kShadowShorten, alphaSeed(vertex, 0u)))
+        return vec3(0.0);
     return f * cosS * ls.radiance * (w / ls.pdf);  // ls.pdf > 0 when sampleLight succeeds
 }
 
@@ -291,7 +301,7 @@ PathResult tracePath(uvec2 pixel, bool haveVisibility, uvec4 vis) {
         cameraRay(eye, vec2(pixel) + jitter, origin, dir);
         BvhHit hit;
         COUNT_RAY(0);
-        if (!bvhClosestHit(origin, dir, 0.0, kInfinity, hit)) {
+        if (!bvhClosestHit(origin, dir, 0.0, kInfinity, alphaSeed(0u, 1u), hit)) {
             r.emission = sceneEnvironmentRadiance(dir);  // the background (0 without one)
             r.direct = r.emission;
             return r;
@@ -334,7 +344,7 @@ PathResult tracePath(uvec2 pixel, bool haveVisibility, uvec4 vis) {
         BvhHit hit;
 #if PATHTRACE_LAST_RAY
         COUNT_RAY(last ? 4 : 2);
-        if (!bvhClosestHit(p, wi, 0.0, kInfinity, hit)) {
+        if (!bvhClosestHit(p, wi, 0.0, kInfinity, alphaSeed(vertex, 1u), hit)) {
             vec3 e = throughput * escapedRadiance(wi, brdfPdfValue);
             addFound(r, depth, e);
             break;
@@ -354,7 +364,7 @@ PathResult tracePath(uvec2 pixel, bool haveVisibility, uvec4 vis) {
         }
 #else
         COUNT_RAY(2);
-        if (!bvhClosestHit(p, wi, 0.0, kInfinity, hit)) {
+        if (!bvhClosestHit(p, wi, 0.0, kInfinity, alphaSeed(vertex, 1u), hit)) {
             vec3 e = throughput * escapedRadiance(wi, brdfPdfValue);
             addFound(r, depth, e);
             break;

@@ -135,8 +135,13 @@ std::pair<std::vector<glm::vec4>, double> traceEmbree(const EmbreeScene& s, cons
 
 std::pair<std::vector<glm::vec4>, double> traceGpu(gpu::Context& ctx, const scene::SceneGpu& s,
                                                    const RaySet& set) {
-    gpu::ComputePipeline pipe(ctx, "bench/ray_query.comp",
-                              {{"OCCLUSION", set.occlusion ? "1" : "0"}});
+    // The scene's defines with the alpha test off: Embree traces geometry only, so both sides
+    // treat FlightHelmet's BLEND lenses as opaque (and opaque scenes run the plain traversal).
+    gpu::ShaderDefines defines = s.defines();
+    for (auto& [name, value] : defines)
+        if (name == "SCENE_HAS_ALPHA") value = "0";
+    defines.emplace_back("OCCLUSION", set.occlusion ? "1" : "0");
+    gpu::ComputePipeline pipe(ctx, "bench/ray_query.comp", defines);
     const auto n = uint32_t(set.rays.size());
     gpu::Buffer rays(ctx, n * sizeof(BenchRay));
     gpu::Buffer results(ctx, n * sizeof(glm::vec4));

@@ -285,10 +285,10 @@ TEST_F(SceneGpuTest, BuffersFeaturesAndDefines) {
     const SceneGpu full(ctx(), fullScene());
     EXPECT_EQ(full.features(), uint32_t(graph::kSceneGeometry | graph::kSceneEmissive |
                                         graph::kSceneTextures | graph::kScenePunctual));
-    // Everything but COLOR_0, normal maps and an environment.
+    // Everything but COLOR_0, normal maps, an environment and alpha.
     for (const auto& [name, value] : full.defines()) {
         const bool absent = name == "SCENE_HAS_VERTEX_COLORS" || name == "SCENE_HAS_NORMAL_MAPS" ||
-                            name == "SCENE_HAS_ENVIRONMENT";
+                            name == "SCENE_HAS_ENVIRONMENT" || name == "SCENE_HAS_ALPHA";
         EXPECT_EQ(value, absent ? "0" : "1") << name;
     }
     EXPECT_EQ(full.info().emitterCount, 2u);

@@ -56,6 +56,8 @@ TEST(SceneLoadReal, CornellBoxOriginalAndNvidia) {
     expectConsistent(nvidia);
     EXPECT_EQ(nvidia.mesh.triangleCount(), 16732u);
     EXPECT_FLOAT_EQ(maxEmission(nvidia), 10.0f);  // out of glTF range, kept as HDR
+    // Its glass sphere is BLEND with alpha 0.05 (NV_materials_mdl glass, not read): nearly clear.
+    EXPECT_TRUE(nvidia.features() & graph::kSceneAlpha);
     ASSERT_EQ(nvidia.cameras.size(), 1u);
     EXPECT_NEAR(nvidia.cameras[0].yfov, 0.7175f, 1e-3f);
     EXPECT_NEAR(nvidia.cameras[0].position.z, 19.99f, 0.02f);
@@ -84,7 +86,13 @@ TEST(SceneLoadReal, FlightHelmetTextures) {
         EXPECT_NEAR(glm::length(glm::vec3(s.mesh.tangents[i])), 1.0f, 1e-4f) << i;
         EXPECT_NEAR(glm::dot(glm::vec3(s.mesh.tangents[i]), s.mesh.normals[i]), 0.0f, 1e-4f) << i;
     }
-    EXPECT_EQ(s.features(), uint32_t(graph::kSceneGeometry | graph::kSceneTextures));
+    // LensesMat is alphaMode BLEND (texture alpha 0.14-0.79): traced as stochastic transparency.
+    EXPECT_EQ(s.features(),
+              uint32_t(graph::kSceneGeometry | graph::kSceneTextures | graph::kSceneAlpha));
+    const auto lenses = std::find_if(s.materials.begin(), s.materials.end(),
+                                     [](const Material& m) { return m.name == "LensesMat"; });
+    ASSERT_NE(lenses, s.materials.end());
+    EXPECT_EQ(lenses->alphaMode, AlphaMode::Blend);
 }
 
 TEST(SceneLoadReal, PlainMeshesAndDracoVariants) {
