@@ -8,7 +8,8 @@ install-deps.sh: it is a cross-check, not a test):
                                     [--size 96] [--hdri forest sunset]
 
 For each case it writes one glTF file, renders it converged with `fovea reference` and with Cycles
-(`blender -b --factory-startup`, CPU, its glTF importer; this same file is the Blender script),
+(`blender -b --factory-startup`, CPU, its glTF importer, which needs python3-numpy; this same
+file is the Blender script; run the driver with Debian's /usr/bin/python3),
 and compares the mean radiance of a 4x4 grid of regions. Cycles is set to what fovea computes:
 Lambertian surfaces (each imported Principled BSDF replaced by a Diffuse BSDF of roughness 0 with
 the same base colour), 8 indirect bounces (fovea's reference graph, maxBounces 8), a 1-pixel box
@@ -97,6 +98,11 @@ def write_gltf(path):
 def blender_main(argv):
     import bpy  # noqa: F401 (only inside Blender)
 
+    import numpy
+
+    # Debian 12's Blender 3.4 glTF importer still says np.bool, which numpy 1.24 removed.
+    if not hasattr(numpy, "bool"):
+        numpy.bool = bool
     args = json.loads(argv[0])
     bpy.ops.wm.read_factory_settings(use_empty=True)
     bpy.ops.import_scene.gltf(filepath=args["gltf"])
