@@ -116,6 +116,46 @@ std::vector<glm::vec4> readTangents(const tinygltf::Model& model, size_t accesso
     return out;
 }
 
+// The tangents of one primitive's vertices, out.positions[firstVertex..]: from TANGENT
+// (`fromFile`, indexed by `sourceVertex` when corners were split for flat normals; the model
+// matrix applied to xyz, w flipped by a mirroring node, §3.7.4), else generated from the UVs; the
+// placeholder (0,0,0,1) when the primitive is not normal-mapped.
+void appendTangents(TriangleMesh& out, size_t firstVertex, size_t firstTriangle, bool normalMapped,
+                    const std::vector<glm::vec4>& fromFile,
+                    const std::vector<uint32_t>& sourceVertex, const glm::dmat3& linear,
+                    bool flip) {
+    if (!normalMapped) {
+        out.tangents.resize(out.positions.size(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+        return;
+    }
+    if (!fromFile.empty()) {
+        for (size_t i = firstVertex; i < out.positions.size(); ++i) {
+            const size_t k = i - firstVertex;
+            const glm::vec4 t = fromFile[sourceVertex.empty() ? k : sourceVertex[k]];
+            glm::vec3 xyz = glm::vec3(linear * glm::dvec3(t));
+            const glm::vec3 n = out.normals[i];
+            xyz -= n * glm::dot(n, xyz);  // back to the tangent plane after a shear
+            const float length = glm::length(xyz);
+            out.tangents.push_back(
+                length > 0.0f && std::isfinite(length)
+                    ? glm::vec4(xyz / length, (t.w < 0.0f) != flip ? -1.0f : 1.0f)
+                    : glm::vec4(perpendicularTo(n), 1.0f));
+        }
+        return;
+    }
+    std::vector<glm::uvec3> local;
+    local.reserve(out.triangles.size() - firstTriangle);
+    for (size_t t = firstTriangle; t < out.triangles.size(); ++t)
+        local.push_back(out.triangles[t] - glm::uvec3(uint32_t(firstVertex)));
+    const auto tail = [&](const auto& v) {
+        using T = typename std::decay_t<decltype(v)>::value_type;
+        return std::vector<T>(v.begin() + ptrdiff_t(firstVertex), v.end());
+    };
+    const std::vector<glm::vec4> generated =
+        generateTangents(tail(out.positions), tail(out.normals), tail(out.uvs), local);
+    out.tangents.insert(out.tangents.end(), generated.begin(), generated.end());
+}
+
 }  // namespace
 
 void appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t primIndex,
@@ -234,40 +274,11 @@ void appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t prim
     if (normalMapped && out.tangents.empty())
         out.tangents.assign(out.positions.size(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
     const size_t firstVertex = out.positions.size(), firstTriangle = out.triangles.size();
-    // Called on every return: the primitive's tangents from TANGENT (model matrix applied to
-    // xyz, w flipped with a mirroring node, §3.7.4) or generated; or the placeholder.
+    // Called on every return (tangents are kept only once a normal-mapped primitive came).
     const auto finishTangents = [&](const std::vector<uint32_t>& sourceVertex) {
-        if (!withTangents) return;
-        const size_t added = out.positions.size() - firstVertex;
-        if (!normalMapped) {
-            out.tangents.resize(out.positions.size(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-            return;
-        }
-        if (!rawTangents.empty()) {
-            for (size_t i = 0; i < added; ++i) {
-                const glm::vec4 t = rawTangents[sourceVertex.empty() ? i : sourceVertex[i]];
-                glm::vec3 xyz = glm::vec3(linear * glm::dvec3(t));
-                const glm::vec3 n = out.normals[firstVertex + i];
-                xyz -= n * glm::dot(n, xyz);  // back to the tangent plane after a shear
-                const float length = glm::length(xyz);
-                out.tangents.push_back(
-                    length > 0.0f && std::isfinite(length)
-                        ? glm::vec4(xyz / length, (t.w < 0.0f) != flip ? -1.0f : 1.0f)
-                        : glm::vec4(perpendicularTo(n), 1.0f));
-            }
-            return;
-        }
-        std::vector<glm::uvec3> local;
-        local.reserve(out.triangles.size() - firstTriangle);
-        for (size_t t = firstTriangle; t < out.triangles.size(); ++t)
-            local.push_back(out.triangles[t] - glm::uvec3(uint32_t(firstVertex)));
-        const auto range = [&](const auto& v) {
-            using T = typename std::decay_t<decltype(v)>::value_type;
-            return std::vector<T>(v.begin() + ptrdiff_t(firstVertex), v.end());
-        };
-        const std::vector<glm::vec4> generated =
-            generateTangents(range(out.positions), range(out.normals), range(out.uvs), local);
-        out.tangents.insert(out.tangents.end(), generated.begin(), generated.end());
+        if (withTangents)
+            appendTangents(out, firstVertex, firstTriangle, normalMapped, rawTangents, sourceVertex,
+                           linear, flip);
     };
 
     if (rawNormals.empty()) {

@@ -101,6 +101,58 @@ layout::TextureView packTextureView(const TextureView& view) {
     return out;
 }
 
+// scene_materials and scene_texture_views, and what the shaders need compiled in for them.
+struct MaterialUpload {
+    std::vector<layout::Material> materials;
+    std::vector<layout::TextureView> views;  // kTextureSlots a material; empty without texels
+    std::vector<bool> textureUsed;           // per Scene texture
+    bool textured = false;      // a material samples a texture with texels (SCENE_HAS_TEXTURES)
+    bool normalMapped = false;  // and one reads a normal texture (SCENE_HAS_NORMAL_MAPS)
+};
+
+MaterialUpload packMaterials(const std::vector<Material>& materials, const Scene& scene,
+                             const LightTable& lights) {
+    const TriangleMesh& mesh = scene.mesh;
+    MaterialUpload out;
+    out.textureUsed.assign(scene.textures.size(), false);
+    out.materials.reserve(materials.size());
+    out.views.reserve(materials.size() * layout::kTextureSlots);
+    const std::vector<double>& density = lights.materialPowerDensity();
+    for (size_t m = 0; m < materials.size(); ++m) {
+        const Material& mat = materials[m];
+        layout::Material g{};
+        g.baseColor = mat.baseColor;
+        g.emissive = glm::vec4(mat.emissive, m < density.size() ? float(density[m]) : 0.0f);
+        g.params = glm::vec4(mat.metallic, mat.roughness, mat.doubleSided ? 1.0f : 0.0f,
+                             alphaThreshold(mat));
+        g.textures = glm::ivec4(validTexture(mat.baseColorTexture, scene.textures),
+                                validTexture(mat.metallicRoughnessTexture, scene.textures),
+                                validTexture(mat.emissiveTexture, scene.textures),
+                                validTexture(mat.normalTexture, scene.textures));
+        // A normal texture needs tangents; a hand-built mesh without them shades unmapped.
+        if (mesh.tangents.size() != mesh.positions.size()) g.textures.w = -1;
+        out.normalMapped = out.normalMapped || g.textures.w >= 0;
+        for (int k = 0; k < 4; ++k) {
+            if (g.textures[k] < 0) continue;
+            out.textureUsed[g.textures[k]] = true;
+            out.textured = out.textured || hasTexels(scene.textures[g.textures[k]]);
+        }
+        out.materials.push_back(g);
+        // The order of g.textures' x, y, z, w (kSceneSlot* in scene_texture.glsl).
+        for (const TextureView* view :
+             {&mat.baseColorView, &mat.metallicRoughnessView, &mat.emissiveView, &mat.normalView})
+            out.views.push_back(packTextureView(*view));
+        out.views.back().scale = mat.normalScale;
+    }
+    // The shader reads scene_tangents only through textures.w: without texels (or tangents) no
+    // material may name a normal texture; without texels nothing reads the views.
+    out.normalMapped = out.normalMapped && out.textured;
+    if (!out.normalMapped)
+        for (layout::Material& g : out.materials) g.textures.w = -1;
+    if (!out.textured) out.views.clear();
+    return out;
+}
+
 glm::uvec2 packAliasSlot(const AliasSlot& slot) {
     return glm::uvec2(slot.alias, std::bit_cast<uint32_t>(float(slot.prob)));
 }
@@ -191,40 +243,10 @@ void SceneGpu::upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
     // Materials: glTF's default material stands in when a hand-built scene has none.
     const std::vector<Material> fallback(1);
     const std::vector<Material>& materials = scene.materials.empty() ? fallback : scene.materials;
-    bool textured = false;
-    std::vector<bool> textureUsed(scene.textures.size(), false);
-    std::vector<layout::Material> gpuMaterials;
-    gpuMaterials.reserve(materials.size());
-    std::vector<layout::TextureView> views;  // kTextureSlots a material, only when textured
-    bool normalMapped = false;
-    views.reserve(materials.size() * layout::kTextureSlots);
-    const std::vector<double>& density = lights.materialPowerDensity();
-    for (size_t m = 0; m < materials.size(); ++m) {
-        const Material& mat = materials[m];
-        layout::Material g{};
-        g.baseColor = mat.baseColor;
-        g.emissive = glm::vec4(mat.emissive, m < density.size() ? float(density[m]) : 0.0f);
-        g.params = glm::vec4(mat.metallic, mat.roughness, mat.doubleSided ? 1.0f : 0.0f,
-                             alphaThreshold(mat));
-        g.textures = glm::ivec4(validTexture(mat.baseColorTexture, scene.textures),
-                                validTexture(mat.metallicRoughnessTexture, scene.textures),
-                                validTexture(mat.emissiveTexture, scene.textures),
-                                validTexture(mat.normalTexture, scene.textures));
-        // A normal texture needs tangents; a hand-built mesh without them shades unmapped.
-        if (mesh.tangents.size() != mesh.positions.size()) g.textures.w = -1;
-        normalMapped = normalMapped || g.textures.w >= 0;
-        for (int k = 0; k < 4; ++k) {
-            if (g.textures[k] < 0) continue;
-            textureUsed[g.textures[k]] = true;
-            textured = textured || hasTexels(scene.textures[g.textures[k]]);
-        }
-        gpuMaterials.push_back(g);
-        // The order of g.textures' x, y, z, w (kSceneSlot* in scene_sample.glsl).
-        for (const TextureView* view :
-             {&mat.baseColorView, &mat.metallicRoughnessView, &mat.emissiveView, &mat.normalView})
-            views.push_back(packTextureView(*view));
-        views.back().scale = mat.normalScale;
-    }
+    MaterialUpload packed = packMaterials(materials, scene, lights);
+    std::vector<layout::Material>& gpuMaterials = packed.materials;
+    const std::vector<bool>& textureUsed = packed.textureUsed;
+    const bool textured = packed.textured;
 
     // Geometry in BVH order.
     std::vector<layout::Vertex> vertices(mesh.positions.size());
@@ -236,11 +258,8 @@ void SceneGpu::upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
         vertices[v] = {glm::vec4(mesh.positions[v], uv.x), glm::vec4(n, uv.y)};
     }
     // Vertex colours only when the mesh has them (else an empty binding, compiled out).
-    // Tangents only when a material's normal texture will read them (SCENE_HAS_NORMAL_MAPS);
-    // otherwise no material may name one (the shader reads scene_tangents only then).
-    mNormalMaps = normalMapped && textured;
-    if (!mNormalMaps)
-        for (layout::Material& g : gpuMaterials) g.textures.w = -1;
+    // Tangents only when a material's normal texture will read them (SCENE_HAS_NORMAL_MAPS).
+    mNormalMaps = packed.normalMapped;
     std::vector<glm::vec4> tangents;
     if (mNormalMaps) tangents = mesh.tangents;
     mVertexColors = !mesh.colors.empty();
@@ -341,8 +360,7 @@ void SceneGpu::upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
     addBuffer(context, "scene_materials", gpuMaterials.data(), bytesOf(gpuMaterials));
     addBuffer(context, "scene_textures", textureTable.data(), bytesOf(textureTable));
     addBuffer(context, "scene_texels", texels.data(), bytesOf(texels));
-    if (!textured) views.clear();  // nothing samples them (SCENE_HAS_TEXTURES 0)
-    addBuffer(context, "scene_texture_views", views.data(), bytesOf(views));
+    addBuffer(context, "scene_texture_views", packed.views.data(), bytesOf(packed.views));
     addBuffer(context, "scene_lights", gpuLights.data(), bytesOf(gpuLights));
     addBuffer(context, "scene_emitters", lights.entries().data(), bytesOf(lights.entries()));
     addBuffer(context, "scene_vertex_colors", colors.data(), bytesOf(colors));
