@@ -355,6 +355,22 @@ glm::dvec4 referenceSample(const Texture& t, glm::vec2 uv, bool srgb) {
     return glm::mix(top, bottom, double(f.y));
 }
 
+// Runs test/scene_texture.comp (with `defines`) on `queries` over `scene`; one result a query.
+std::vector<glm::vec4> textureQueries(
+    gpu::Context& context, const SceneGpu& scene,
+    const std::vector<std::pair<std::string, std::string>>& defines,
+    const std::vector<glm::vec4>& queries) {
+    const auto n = static_cast<uint32_t>(queries.size());
+    gpu::ComputePipeline pipe(context, "test/scene_texture.comp", defines);
+    gpu::Buffer q = hostBuffer(context, n * 16, "queries");
+    gpu::Buffer r = hostBuffer(context, n * 16, "results");
+    q.upload(context, queries.data(), n * 16);
+    scene.bind(pipe);
+    pipe.bind("test_queries", q).bind("test_results", r).set("count", n);
+    context.submitAndWait([&](const vk::raii::CommandBuffer& cmd) { pipe.dispatch(cmd, n); });
+    return r.downloadAs<glm::vec4>(context);
+}
+
 }  // namespace
 
 TEST_F(SceneGpuTest, TextureSamplingMatchesCpuBilinear) {
@@ -385,14 +401,7 @@ TEST_F(SceneGpuTest, TextureSamplingMatchesCpuBilinear) {
             expects.push_back({tex, uv, srgb});
         }
     const auto n = static_cast<uint32_t>(queries.size());
-    gpu::ComputePipeline pipe(ctx(), "test/scene_texture.comp", gpuScene.defines());
-    gpu::Buffer q = hostBuffer(ctx(), n * 16, "queries");
-    gpu::Buffer r = hostBuffer(ctx(), n * 16, "results");
-    q.upload(ctx(), queries.data(), n * 16);
-    gpuScene.bind(pipe);
-    pipe.bind("test_queries", q).bind("test_results", r).set("count", n);
-    ctx().submitAndWait([&](const vk::raii::CommandBuffer& cmd) { pipe.dispatch(cmd, n); });
-    const auto results = r.downloadAs<glm::vec4>(ctx());
+    const auto results = textureQueries(ctx(), gpuScene, gpuScene.defines(), queries);
     for (uint32_t i = 0; i < n; ++i) {
         const Expect& e = expects[i];
         const glm::dvec4 ref = referenceSample(scene.textures[e.texture], e.uv, e.srgb);
@@ -402,15 +411,10 @@ TEST_F(SceneGpuTest, TextureSamplingMatchesCpuBilinear) {
                 << e.srgb << " channel " << k;
     }
     // Material lookup multiplies the factors: baseColor * texture, roughness * texel.g.
-    gpu::ComputePipeline material(ctx(), "test/scene_texture.comp", {{"MATERIAL_QUERY", "1"}});
     glm::vec4 mq(0.37f, 0.61f, 0.0f, 0.0f);
     const uint32_t materialIndex = 1;
     std::memcpy(&mq.z, &materialIndex, 4);
-    q.upload(ctx(), &mq, 16);
-    gpuScene.bind(material);
-    material.bind("test_queries", q).bind("test_results", r).set("count", 1u);
-    ctx().submitAndWait([&](const vk::raii::CommandBuffer& cmd) { material.dispatch(cmd, 1); });
-    const glm::vec4 m = r.downloadAs<glm::vec4>(ctx())[0];
+    const glm::vec4 m = textureQueries(ctx(), gpuScene, {{"MATERIAL_QUERY", "1"}}, {mq})[0];
     const glm::dvec4 base = referenceSample(scene.textures[0], {0.37f, 0.61f}, true);
     const glm::dvec4 mr = referenceSample(scene.textures[1], {0.37f, 0.61f}, false);
     EXPECT_NEAR(m.r, 0.5 * base.r, 1e-4);
@@ -460,14 +464,7 @@ TEST_F(SceneGpuTest, TextureViewsMatchTheCpuReference) {
             expects.push_back({m, slot, uv});
         }
     const auto n = static_cast<uint32_t>(queries.size());
-    gpu::ComputePipeline pipe(ctx(), "test/scene_texture.comp", {{"VIEW_QUERY", "1"}});
-    gpu::Buffer q = hostBuffer(ctx(), n * 16, "queries");
-    gpu::Buffer r = hostBuffer(ctx(), n * 16, "results");
-    q.upload(ctx(), queries.data(), n * 16);
-    gpuScene.bind(pipe);
-    pipe.bind("test_queries", q).bind("test_results", r).set("count", n);
-    ctx().submitAndWait([&](const vk::raii::CommandBuffer& cmd) { pipe.dispatch(cmd, n); });
-    const auto results = r.downloadAs<glm::vec4>(ctx());
+    const auto results = textureQueries(ctx(), gpuScene, {{"VIEW_QUERY", "1"}}, queries);
     const Texture& t = scene.textures[0];
     int compared = 0;
     for (uint32_t i = 0; i < n; ++i) {
