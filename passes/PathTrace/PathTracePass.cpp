@@ -70,6 +70,11 @@ void PathTracePass::params(graph::ParamVisitor& v) {
           "the primary vertex's light samples of one pixel form a randomly shifted "
           "low-discrepancy set (R-sequence) instead of independent points: unbiased, less noise "
           "at several samples per pixel (no effect at spp 1)");
+    v.add("bumpShadowing", mBumpShadowing, false,
+          "where a normal texture bends the shading normal, the diffuse lobe times Chiang, Li "
+          "and Burley's bump shadowing term (2019, \"Taming the Shadow Terminator\"), as "
+          "Blender Cycles does: darker light at grazing angles to the surface; false = plain "
+          "glTF shading with the bent normal. Nothing changes without normal textures");
     v.add("countRays", mCountRays, false,
           "benchmarks: count every traced ray by kind (atomic counters; rayCounts())");
 }
@@ -116,6 +121,8 @@ void PathTracePass::compile(graph::CompileContext& ctx) {
     defines.emplace_back("PATHTRACE_COUNT_RAYS", mCountRays ? "1" : "0");
     defines.emplace_back("PATHTRACE_LAST_MIS", mLastBounceMis ? "1" : "0");
     defines.emplace_back("PATHTRACE_STRATIFY_LIGHT", mStratifyLight ? "1" : "0");
+    defines.emplace_back("PATHTRACE_BUMP_SHADOWING",
+                         mBumpShadowing && scene->hasNormalMaps() ? "1" : "0");
     const auto strategy =
         std::find(kEmitterSampling.begin(), kEmitterSampling.end(), mEmitterSampling);
     defines.emplace_back(
@@ -132,6 +139,7 @@ void PathTracePass::compile(graph::CompileContext& ctx) {
                feature(defines, "SCENE_HAS_TEXTURES", "textures") +
                (scene->features() & scene::kSceneEnvironment ? ",environment" : "") +
                (scene->features() & scene::kSceneAlpha ? ",alpha" : "") +
+               (mBumpShadowing && scene->hasNormalMaps() ? ",bump-shadowing" : "") +
                ",bounces=" + std::to_string(mMaxBounces) +
                ",primary=" + (mUseVisibility ? "gbuffer" : "own") +
                (mUseLayout ? ",layout" : ",spp=" + std::to_string(mSpp)) +

@@ -51,6 +51,7 @@ private:
     bool mCountRays = false;
     bool mLastBounceMis = kLastBounceMisDefault;
     bool mStratifyLight = false;
+    bool mBumpShadowing = false;
     std::string mEmitterSampling = "mis";
     std::string mLightSampling = "area";
 

@@ -7,6 +7,8 @@
 //    (probability from the Fresnel/diffuse luminance at the view angle), the specular one by
 //    sampling GGX visible normals (Heitz 2018); the weight f cos / pdf always uses the pdf of
 //    the whole mixture (one-sample MIS), so the choice affects variance only, never the mean.
+//  - Optional bump shadowing (PathTrace bumpShadowing): the diffuse lobe times Chiang, Li and
+//    Burley's shadowing term for bent shading normals (brdfBumpShadowing below), as Cycles does.
 // All directions are world-space unit vectors; `n` is the shading normal on the side of wo.
 #ifndef FOVEA_PATHTRACE_BRDF_GLSL
 #define FOVEA_PATHTRACE_BRDF_GLSL
@@ -78,8 +80,24 @@ float brdfSpecularProbability(BrdfInput m, float nv) {
 }
 #endif
 
-// f(wo, wi) (without the cosine); zero below the surface.
-vec3 brdfEval(BrdfInput m, vec3 n, vec3 wo, vec3 wi) {
+// Chiang, Li & Burley 2019, "Taming the Shadow Terminator" (SIGGRAPH talk), the term Cycles
+// multiplies its diffuse closures by where a normal map or bump bends the shading normal n away
+// from the interpolated normal nSmooth: g = (nSmooth.wi) / ((n.wi)(nSmooth.n)), G = 1 for
+// g >= 1, else -g^3 + g^2 + g (C1 at g = 1). It darkens light arriving at grazing angles to the
+// interpolated surface that a bent normal would otherwise catch at full strength. 1 when n =
+// nSmooth (g = 1).
+float brdfBumpShadowing(vec3 nSmooth, vec3 n, vec3 wi) {
+    float d = dot(n, wi) * dot(nSmooth, n);
+    if (!(d > 0.0)) return 0.0;  // wi below n (f is 0 there) or n bent past 90 degrees
+    float g = dot(nSmooth, wi) / d;  // d > 0
+    if (g >= 1.0) return 1.0;
+    if (g <= 0.0) return 0.0;
+    return g * (1.0 + g * (1.0 - g));
+}
+
+// f(wo, wi) (without the cosine) with its diffuse lobe times diffuseScale (bump shadowing; 1 =
+// the plain BRDF); zero below the surface.
+vec3 brdfEvalScaled(BrdfInput m, vec3 n, vec3 wo, vec3 wi, float diffuseScale) {
     float nl = dot(n, wi);
     if (nl <= 0.0) return vec3(0.0);
 #if BRDF_GGX
@@ -93,11 +111,13 @@ vec3 brdfEval(BrdfInput m, vec3 n, vec3 wo, vec3 wi) {
     float g2 = 1.0 / (1.0 + brdfLambda(nv, a) + brdfLambda(max(nl, kMinCos), a));
     vec3 spec = f * (brdfD(max(dot(n, h), 0.0), a) * g2 / (4.0 * nv * max(nl, kMinCos)));
     vec3 diffuse = (1.0 - f) * (1.0 - m.metallic) * m.baseColor / kPi;
-    return diffuse + spec;
+    return diffuse * diffuseScale + spec;
 #else
-    return m.baseColor / kPi;
+    return m.baseColor / kPi * diffuseScale;
 #endif
 }
+
+vec3 brdfEval(BrdfInput m, vec3 n, vec3 wo, vec3 wi) { return brdfEvalScaled(m, n, wo, wi, 1.0); }
 
 // Solid-angle pdf with which brdfSample produces wi.
 float brdfPdf(BrdfInput m, vec3 n, vec3 wo, vec3 wi) {
@@ -153,14 +173,15 @@ bool brdfSample(BrdfInput m, vec3 n, vec3 wo, vec3 u, out vec3 wi) {
     return dot(n, wi) > 0.0;
 }
 
-// f cos / pdf for a direction from brdfSample (0 when the pdf vanishes).
-vec3 brdfWeight(BrdfInput m, vec3 n, vec3 wo, vec3 wi) {
+// f cos / pdf for a direction from brdfSample (0 when the pdf vanishes), the diffuse lobe times
+// diffuseScale as in brdfEvalScaled.
+vec3 brdfWeightScaled(BrdfInput m, vec3 n, vec3 wo, vec3 wi, float diffuseScale) {
 #if BRDF_GGX
     float pdf = brdfPdf(m, n, wo, wi);
     if (!(pdf > 0.0)) return vec3(0.0);
-    return brdfEval(m, n, wo, wi) * dot(n, wi) / pdf;  // pdf > 0 here
+    return brdfEvalScaled(m, n, wo, wi, diffuseScale) * dot(n, wi) / pdf;  // pdf > 0 here
 #else
-    return m.baseColor;  // (rho / pi) cos / (cos / pi)
+    return m.baseColor * diffuseScale;  // (rho / pi) cos / (cos / pi)
 #endif
 }
 

@@ -192,6 +192,7 @@ struct Vertex {
     vec3 position;
     vec3 ng;  // geometric normal on the side of wo
     vec3 ns;  // shading normal, same side as ng and as wo (else ng)
+    vec3 nSmooth;  // interpolated normal before the normal texture, on the side of ng
     vec3 wo;  // towards the previous vertex
     BrdfInput brdf;
     vec3 emitted;  // radiance leaving towards wo
@@ -199,6 +200,7 @@ struct Vertex {
 
 Vertex makeVertex(uint triangle, vec2 bary, vec3 rayDir) {
     SceneSurface s = sceneSurface(triangle, bary);
+    vec3 smoothNormal = s.normal;
     sceneApplyNormalMap(s);  // glTF §3.9.3 normal texture; ng stays for offsets and leaks
     SceneMaterialSample m = sceneSurfaceMaterial(s);
     bool front = dot(s.geometricNormal, rayDir) < 0.0;
@@ -209,6 +211,7 @@ Vertex makeVertex(uint triangle, vec2 bary, vec3 rayDir) {
     vec3 ns = dot(s.normal, v.ng) < 0.0 ? -s.normal : s.normal;
     // Interpolated normals can face away from the viewer at silhouettes: fall back.
     v.ns = dot(ns, v.wo) > 0.0 ? ns : v.ng;
+    v.nSmooth = dot(smoothNormal, v.ng) < 0.0 ? -smoothNormal : smoothNormal;
     v.brdf.baseColor = m.baseColor;
     v.brdf.metallic = m.metallic;
     v.brdf.roughness = m.roughness;
@@ -223,6 +226,16 @@ struct PathResult {
     vec3 albedo;     // own first-hit base colour (0 on a miss)
     float hitT;      // first indirect ray's hit distance, 0 = no hit
 };
+
+// The diffuse lobe's bump-shadowing factor at v for light from wi (parameter bumpShadowing;
+// compiled in only for scenes with normal textures, where ns can differ from nSmooth).
+float bumpShadowing(Vertex v, vec3 wi) {
+#if PATHTRACE_BUMP_SHADOWING
+    return brdfBumpShadowing(v.nSmooth, v.ns, wi);
+#else
+    return 1.0;
+#endif
+}
 
 // Next-event estimation at v; `last` = no BRDF ray follows (full weight, see header).
 vec3 nextEvent(Vertex v, uint vertex, bool last) {
@@ -239,7 +252,7 @@ vec3 nextEvent(Vertex v, uint vertex, bool last) {
     if (!sceneSampleLight(p, u, ls)) return vec3(0.0);
     float cosS = dot(v.ns, ls.direction);
     if (cosS <= 0.0 || dot(v.ng, ls.direction) <= 0.0) return vec3(0.0);
-    vec3 f = brdfEval(v.brdf, v.ns, v.wo, ls.direction);
+    vec3 f = brdfEvalScaled(v.brdf, v.ns, v.wo, ls.direction, bumpShadowing(v, ls.direction));
     if (maxComponent(f) <= 0.0) return vec3(0.0);
     // `last` is false for every vertex when the last one also traces a BRDF ray (LAST_RAY).
     float w = ls.isDelta ? 1.0
@@ -338,7 +351,7 @@ PathResult tracePath(uvec2 pixel, bool haveVisibility, uvec4 vis) {
         if (!brdfSample(v.brdf, v.ns, v.wo, u, wi)) break;
         if (dot(wi, v.ng) <= 0.0) break;  // below the geometric surface: would leak light
         float brdfPdfValue = brdfPdf(v.brdf, v.ns, v.wo, wi);
-        throughput *= brdfWeight(v.brdf, v.ns, v.wo, wi);
+        throughput *= brdfWeightScaled(v.brdf, v.ns, v.wo, wi, bumpShadowing(v, wi));
         if (maxComponent(throughput) <= 0.0) break;
         vec3 p = bvhOffsetRay(v.position, v.ng);
         BvhHit hit;
