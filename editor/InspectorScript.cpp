@@ -6,6 +6,7 @@
 
 #include "core/util/DidYouMean.h"
 #include "core/util/Error.h"
+#include "core/util/UserFile.h"
 
 namespace fovea::editor {
 
@@ -26,8 +27,7 @@ const std::map<std::string, size_t>& commands() {
 }  // namespace
 
 std::vector<ScriptCommand> parseInspectorScript(const std::filesystem::path& path) {
-    std::ifstream in(path);
-    if (!in) throw InputError(path.string(), "", "cannot read the script file");
+    std::istringstream in(readUserTextFile(path, kMaxJsonFileBytes, "the script file"));
     std::vector<ScriptCommand> out;
     std::string line;
     for (int number = 1; std::getline(in, line); ++number) {

@@ -9,6 +9,7 @@
 #include "apps/fovea/Bench.h"
 #include "core/util/DidYouMean.h"
 #include "core/util/Error.h"
+#include "core/util/UserFile.h"
 
 namespace fovea::app {
 
@@ -146,9 +147,7 @@ std::vector<uint64_t> parseSeeds(const Reader& r, const json& j) {
 
 BenchSpec parseBenchFile(const fs::path& file) {
     const std::string name = file.string();
-    std::ifstream stream(file);
-    if (!stream) throw InputError(name, "", "cannot open bench file");
-    json j = json::parse(stream, nullptr, false);
+    json j = json::parse(readUserTextFile(file, kMaxJsonFileBytes, "bench file"), nullptr, false);
     if (j.is_discarded()) throw InputError(name, "", "not valid JSON");
     Reader r(name);
     r.keys(j, "",

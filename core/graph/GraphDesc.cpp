@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "core/util/Error.h"
+#include "core/util/UserFile.h"
 
 namespace fovea::graph {
 
@@ -86,20 +87,8 @@ std::string errnoText(int error) {
 }  // namespace
 
 GraphDesc parseGraphFile(const std::filesystem::path& path) {
-    const std::string label = path.string();
-    // stdio rather than ifstream: errno is reliably set, so the message can say why.
-    errno = 0;
-    FilePtr file(std::fopen(label.c_str(), "rb"));
-    if (!file) throw InputError(label, "", "cannot read file: " + errnoText(errno));
-    std::string text;
-    char buffer[1 << 16];
-    size_t count = 0;
-    while ((count = std::fread(buffer, 1, sizeof buffer, file.get())) > 0)
-        text.append(buffer, count);
-    if (std::ferror(file.get())) {  // e.g. EISDIR: opening a directory succeeds, reading fails
-        throw InputError(label, "", "cannot read file: " + errnoText(errno));
-    }
-    return parseGraphText(text, label);
+    // Regular files only, up to kMaxJsonFileBytes: /dev/zero or a FIFO would never end.
+    return parseGraphText(readUserTextFile(path, kMaxJsonFileBytes, "file"), path.string());
 }
 
 // --- canonical form -----------------------------------------------------------------------------

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "core/util/Error.h"
+#include "core/util/UserFile.h"
 
 namespace fovea::image {
 
@@ -52,6 +53,7 @@ namespace {
 // Opened for reading with straight alpha kept as stored (OIIO would premultiply a PNG's colour by
 // its alpha); an unreadable file or one without pixels is an InputError naming it.
 std::unique_ptr<OIIO::ImageInput> openImage(const std::filesystem::path& path) {
+    requireRegularFile(path, "image");  // OpenImageIO would block on a FIFO or /dev/zero
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
     auto in = OIIO::ImageInput::open(path.string(), &config);

@@ -7,6 +7,7 @@
 
 #include "core/util/Error.h"
 #include "core/util/JsonUtil.h"
+#include "core/util/UserFile.h"
 
 namespace fovea::scene {
 namespace {
@@ -107,11 +108,8 @@ CameraPath CameraPath::fromJson(const nlohmann::json& j, const std::string& file
 }
 
 CameraPath CameraPath::load(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path.string(), "", "cannot read camera path file");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return fromJson(parseJsonText(text.str(), path.string()), path.string());
+    const std::string text = readUserTextFile(path, kMaxJsonFileBytes, "camera path file");
+    return fromJson(parseJsonText(text, path.string()), path.string());
 }
 
 uint64_t CameraPath::length() const {

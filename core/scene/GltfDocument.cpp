@@ -101,41 +101,6 @@ GlbChunks splitGlb(std::vector<uint8_t> bytes, const std::string& file,
 
 }  // namespace
 
-bool readRegularFile(const std::filesystem::path& path, uint64_t maxBytes,
-                     std::vector<uint8_t>& out, std::string& error) {
-    std::error_code ec;
-    auto status = std::filesystem::status(path, ec);
-    if (ec || !std::filesystem::exists(status)) {
-        error = "file not found";
-        return false;
-    }
-    if (!std::filesystem::is_regular_file(status)) {
-        error = "not a regular file";
-        return false;
-    }
-    uint64_t size = std::filesystem::file_size(path, ec);
-    if (ec) {
-        error = "cannot read the file size: " + ec.message();
-        return false;
-    }
-    if (size > maxBytes) {
-        error = "file is " + std::to_string(size) + " bytes, more than the limit of " +
-                std::to_string(maxBytes);
-        return false;
-    }
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        error = "cannot open the file";
-        return false;
-    }
-    out.resize(size_t(size));
-    if (size > 0 && !in.read(reinterpret_cast<char*>(out.data()), std::streamsize(size))) {
-        error = "read error";
-        return false;
-    }
-    return true;
-}
-
 GltfDocument readGltfDocument(const std::filesystem::path& path) {
     GltfDocument doc;
     doc.file = path.string();

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/scene/GltfJson.h"
+#include "core/util/UserFile.h"
 
 namespace fovea::scene::gltf {
 
@@ -35,10 +36,7 @@ std::string externalUriMessage(const std::string& uri);
 // Throws InputError(file, "", ...) for unreadable files, broken GLB containers and bad JSON.
 GltfDocument readGltfDocument(const std::filesystem::path& path);
 
-// Reads a whole regular file (no FIFOs or devices: reading one could block forever) of at most
-// `maxBytes`. On failure returns false and a reason.
-bool readRegularFile(const std::filesystem::path& path, uint64_t maxBytes,
-                     std::vector<uint8_t>& out, std::string& error);
+// Files are read with readRegularFile (core/util/UserFile.h): no FIFOs or devices.
 
 // Size limits: tinygltf addresses a GLB with 32-bit lengths; images are decoded to RGBA8 in memory.
 constexpr uint64_t kMaxGltfFileBytes = uint64_t(2) << 30;

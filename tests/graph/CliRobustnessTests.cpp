@@ -6,6 +6,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 
 #include <chrono>
 #include <thread>
@@ -365,4 +366,29 @@ TEST(CliRunRobustness, AllBlackOutputIsWarned) {
                          "16x16", "--frames", "1", "--scene", "builtin:cornell"});
     ASSERT_EQ(framed.code, 0) << framed.describe();
     EXPECT_FALSE(contains(framed.err, "black in every pixel")) << framed.describe();
+}
+
+TEST(CliInputRobustness, NonRegularFilesAreRefusedNotRead) {
+    // Issue 33, class 1: /dev/zero, a FIFO or a link to one named as a graph, camera path,
+    // reference or compared image used to hang (and the JSON readers grew without bound). Every
+    // such file is now refused before it is opened: exit 2 naming it, at once.
+    TempDir tmp;
+    const fs::path fifo = tmp / "pipe.json";
+    ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+    const fs::path zeroLink = tmp / "zero.exr";
+    fs::create_symlink("/dev/zero", zeroLink);
+    for (const fs::path& bad : {fs::path("/dev/zero"), fifo, zeroLink}) {
+        expectInputError(cli({"validate", bad.string()}), {bad.string(), "not a regular file"});
+        expectInputError(cli({"run", bad.string(), "--frames", "1"}),
+                         {bad.string(), "not a regular file"});
+    }
+    expectInputError(runSmall(kPathTraceGraph, tmp / "camera", {"--camera", fifo.string()}),
+                     {fifo.string(), "not a regular file"});
+    expectInputError(
+        runSmall(kPathTraceGraph, tmp / "reference", {"--reference", zeroLink.string()}),
+        {zeroLink.string(), "not a regular file"});
+    expectInputError(cli({"compare", zeroLink.string(), "/dev/zero"}),
+                     {zeroLink.string(), "not a regular file"});
+    expectInputError(cli({"bench", fifo.string(), "--out", (tmp / "bench").string()}),
+                     {fifo.string(), "not a regular file"});
 }

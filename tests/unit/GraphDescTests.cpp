@@ -216,7 +216,7 @@ TEST(GraphDesc, SaveRefusesAnInvalidGraph) {
 TEST(GraphDesc, NonexistentFile) {
     std::string path = std::string(FOVEA_TEST_DIR) + "/graph/bad/parse/does_not_exist.json";
     std::string message = inputErrorOf([&] { parseGraphFile(path); });
-    EXPECT_EQ(message, path + ": cannot read file: No such file or directory");
+    EXPECT_EQ(message, path + ": cannot read file: file not found");
 }
 
 TEST(GraphDesc, DirectoryIsNotAFile) {
