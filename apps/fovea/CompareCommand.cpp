@@ -8,6 +8,7 @@
 #include "apps/fovea/CliChecks.h"
 #include "apps/fovea/Commands.h"
 #include "core/image/ImageMetrics.h"
+#include "core/util/Error.h"
 
 namespace fovea::app {
 
@@ -28,6 +29,13 @@ int compareCommand(const CompareOptions& o) {
     image::MetricOptions options;
     options.peak = o.peak;
     options.relMseEpsilon = o.epsilon;
+    // Headers first: images of different sizes are refused before either is decoded.
+    const image::ImageSize a = image::readImageSize(o.test), b = image::readImageSize(o.reference);
+    if (a.width != b.width || a.height != b.height)
+        throw fovea::InputError(o.test + " is " + std::to_string(a.width) + "x" +
+                                std::to_string(a.height) + " but " + o.reference + " is " +
+                                std::to_string(b.width) + "x" + std::to_string(b.height) +
+                                ": images of different sizes cannot be compared");
     const image::ImageRGBA test = image::readImage(o.test);
     const image::ImageRGBA reference = image::readImage(o.reference);
     const image::ImageMetrics m =

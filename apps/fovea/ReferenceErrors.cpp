@@ -114,13 +114,18 @@ fs::path ReferenceSource::fileFor(uint32_t frame) const {
 }
 
 void ReferenceSource::load(const fs::path& file) {
-    mImage = image::readImage(file);  // InputError naming the file when unreadable
-    if (mImage.width != mWidth || mImage.height != mHeight)
+    // The header first (InputError naming the file when unreadable): a wrong size is refused
+    // before the decode allocates anything.
+    const image::ImageSize header = image::readImageSize(file);
+    if (header.width != mWidth || header.height != mHeight)
         throw InputError(file.string(), "",
-                         "reference is " + std::to_string(mImage.width) + "x" +
-                             std::to_string(mImage.height) + " but the run renders " +
+                         "reference is " + std::to_string(header.width) + "x" +
+                             std::to_string(header.height) + " but the run renders " +
                              std::to_string(mWidth) + "x" + std::to_string(mHeight) + " (" +
                              mOption + ")");
+    mImage = image::readImage(file);
+    if (mImage.width != mWidth || mImage.height != mHeight)
+        throw InputError(file.string(), "", "the reference changed size while it was read");
     image::checkFinite(mImage, file.string());
 }
 

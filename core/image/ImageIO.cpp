@@ -64,17 +64,29 @@ std::unique_ptr<OIIO::ImageInput> openImage(const std::filesystem::path& path) {
     return in;
 }
 
+// The header's pixel count against the limit (maxPixels 0: kMaxImagePixels).
+void checkPixelCount(const std::filesystem::path& path, const OIIO::ImageSpec& spec,
+                     uint64_t maxPixels) {
+    const uint64_t limit = maxPixels > 0 ? maxPixels : kMaxImagePixels;
+    const uint64_t pixels = uint64_t(spec.width) * uint64_t(spec.height);  // both > 0: openImage
+    if (pixels > limit)
+        throw InputError(path.string(), "",
+                         "image is " + std::to_string(spec.width) + "x" +
+                             std::to_string(spec.height) + ", more than the " +
+                             std::to_string(limit) + " pixels allowed here");
+}
+
 }  // namespace
+
+ImageSize readImageSize(const std::filesystem::path& path) {
+    const auto in = openImage(path);
+    return {uint32_t(in->spec().width), uint32_t(in->spec().height)};  // > 0: openImage
+}
 
 ImageRGBA readImage(const std::filesystem::path& path, uint64_t maxPixels) {
     auto in = openImage(path);
     const OIIO::ImageSpec& spec = in->spec();
-    const uint64_t pixels = uint64_t(spec.width) * uint64_t(spec.height);  // both > 0: openImage
-    if (maxPixels > 0 && pixels > maxPixels)
-        throw InputError(path.string(), "",
-                         "image is " + std::to_string(spec.width) + "x" +
-                             std::to_string(spec.height) + ", more than the " +
-                             std::to_string(maxPixels) + " pixels allowed here");
+    checkPixelCount(path, spec, maxPixels);
     ImageRGBA image;
     image.width = uint32_t(spec.width);
     image.height = uint32_t(spec.height);
@@ -100,6 +112,7 @@ ImageRGBA readImageChannels(const std::filesystem::path& path,
         throw InputError(path.string(), "", "at most 4 channels can be selected");
     auto in = openImage(path);
     const OIIO::ImageSpec& spec = in->spec();
+    checkPixelCount(path, spec, 0);
     std::vector<int> index;
     for (const std::string& name : channels) {
         int found = spec.channelindex(name);

@@ -25,10 +25,21 @@ enum class PngEncoding {
 // Writes 8-bit RGBA with straight (unassociated) alpha: colour is never divided by alpha.
 void writePng(const std::filesystem::path& path, const ImageRGBA& image,
               PngEncoding encoding = PngEncoding::Srgb);
+// The most pixels any reader decodes (16384 x 16384; 4 GiB as RGBA float): a header asking for
+// more is an InputError before any pixel is allocated (a 57-byte PNG may claim 100000^2).
+constexpr uint64_t kMaxImagePixels = uint64_t(1) << 28;
+
+struct ImageSize {
+    uint32_t width = 0, height = 0;
+};
+// The size in the image's header (for EXR its data window), without decoding a pixel, so a
+// caller can refuse a wrong size before paying for the decode. InputError as readImage.
+ImageSize readImageSize(const std::filesystem::path& path);
+
 // Reads any format OIIO knows as RGBA float (missing channels: 0, alpha 1), alpha as stored
 // (a PNG's colour is not premultiplied by its alpha).
-// Throws InputError naming the file when it cannot be read, or when `maxPixels` > 0 and the
-// image has more pixels than that (checked on the header, before any pixel is allocated).
+// Throws InputError naming the file when it cannot be read, or when the image has more pixels
+// than `maxPixels` (0: kMaxImagePixels; checked on the header, before any pixel is allocated).
 ImageRGBA readImage(const std::filesystem::path& path, uint64_t maxPixels = 0);
 // readImage with channel selection: `channels` (at most 4) name the file's channels read as
 // r, g, b, a (missing alpha 1, missing g/b 0; one channel is replicated to r, g, b); empty = as

@@ -71,13 +71,17 @@ std::vector<float> ImageFilePass::readChecked(const std::string& file, uint32_t 
     std::vector<std::string> channels;
     std::stringstream list(mChannels);
     for (std::string item; std::getline(list, item, ',');) channels.push_back(item);
-    image::ImageRGBA img = image::readImageChannels(file, channels);
-    if (img.width != width || img.height != height)
+    // The header first: a wrong size is refused before the decode allocates anything.
+    const image::ImageSize header = image::readImageSize(file);
+    if (header.width != width || header.height != height)
         throw InputError(file, "",
-                         "the image is " + std::to_string(img.width) + "x" +
-                             std::to_string(img.height) + " but pass '" + name() +
+                         "the image is " + std::to_string(header.width) + "x" +
+                             std::to_string(header.height) + " but pass '" + name() +
                              "' (ImageFile) renders " + std::to_string(width) + "x" +
                              std::to_string(height) + " (--size)");
+    image::ImageRGBA img = image::readImageChannels(file, channels);
+    if (img.width != width || img.height != height)  // the file changed since the header read
+        throw InputError(file, "", "the image changed size while it was read");
     return std::move(img.pixels);
 }
 

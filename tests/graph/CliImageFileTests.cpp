@@ -151,3 +151,50 @@ TEST(CliImageFile, BadFilesAreInputErrorsNamingTheFile) {
                      {"src", "frame pattern"});
     expectInputError(run({"--size", "32x32", "--set", "src.path="}), {"src", "'path' is empty"});
 }
+
+namespace {
+
+// A 57-byte PNG whose header claims width x height RGBA8 pixels and which holds none.
+void writeHeaderOnlyPng(const fs::path& path, uint32_t width, uint32_t height) {
+    auto be32 = [](uint32_t v) {
+        return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
+    };
+    auto crc32 = [](const std::string& bytes) {  // PNG's CRC (ISO 3309), bit by bit
+        uint32_t c = 0xFFFFFFFFu;
+        for (unsigned char b : bytes) {
+            c ^= b;
+            for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
+        }
+        return c ^ 0xFFFFFFFFu;
+    };
+    auto chunk = [&](const std::string& type, const std::string& data) {
+        return be32(uint32_t(data.size())) + type + data + be32(crc32(type + data));
+    };
+    const std::string ihdr = be32(width) + be32(height) + std::string{8, 6, 0, 0, 0};
+    writeText(path, std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", ihdr) + chunk("IDAT", "") +
+                        chunk("IEND", ""));
+}
+
+}  // namespace
+
+TEST(CliImageFile, HugeHeadersAreRefusedBeforeAnyPixelIsDecoded) {
+    // Issue 33, class 2: the size in an image's header is checked before the decode allocates.
+    // A 57-byte PNG claiming 100000 x 100000 used to end in exit 1 std::bad_alloc; as an
+    // ImageFile of the wrong size, a compared image or a reference it is now exit 2 naming it.
+    TempDir tmp;
+    const fs::path huge = tmp / "huge.png";
+    writeHeaderOnlyPng(huge, 100000, 100000);
+    const fs::path graph = copyGraph(tmp, huge.string(), "");
+    expectInputError(
+        cli({"run", graph.string(), "--out", (tmp / "o").string(), "--size", "32x32", "--quiet"}),
+        {huge.string(), "100000x100000", "32x32"});
+    const fs::path small = tmp / "small.png";
+    writeHeaderOnlyPng(small, 16, 16);
+    expectInputError(cli({"compare", huge.string(), small.string()}),
+                     {huge.string(), "100000x100000", "16x16", "different sizes"});
+    expectInputError(cli({"compare", huge.string(), huge.string()}),
+                     {huge.string(), "more than the 268435456 pixels allowed"});
+    expectInputError(cli({"run", kPathTraceGraph.string(), "--out", (tmp / "r").string(), "--size",
+                          "32x32", "--frames", "1", "--reference", huge.string()}),
+                     {huge.string(), "100000x100000", "32x32"});
+}
