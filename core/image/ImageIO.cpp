@@ -1,10 +1,12 @@
 #include "core/image/ImageIO.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <vector>
 
 #include "core/util/Error.h"
 #include "core/util/UserFile.h"
@@ -13,16 +15,27 @@ namespace fovea::image {
 
 namespace {
 
+// Encoded in memory (OpenImageIO's IOProxy), then written with checked stdio: OpenImageIO's own
+// file output reports no error when the disk is full (a link to /dev/full "writes" PNG and EXR
+// alike; tests/unit/UserFileTests.cpp), so the bytes go through writeFileChecked.
 void writeWith(const std::filesystem::path& path, uint32_t w, uint32_t h, OIIO::TypeDesc type,
                const void* data) {
     auto out = OIIO::ImageOutput::create(path.string());
     if (!out) throw RuntimeError(path.string() + ": cannot create image: " + OIIO::geterror());
+    if (!out->supports("ioproxy"))
+        throw RuntimeError(path.string() + ": cannot write this format (" +
+                           std::string(out->format_name()) + ") with checked writes");
     OIIO::ImageSpec spec(int(w), int(h), 4, type);
     // Our pixels carry straight (unassociated) alpha. Without this OIIO assumes premultiplied
     // data and divides colour by alpha when writing a PNG, changing every non-opaque pixel.
     spec.attribute("oiio:UnassociatedAlpha", 1);
+    std::vector<unsigned char> bytes;
+    OIIO::Filesystem::IOVecOutput memory(bytes);
+    OIIO::Filesystem::IOProxy* proxy = &memory;
+    spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
     if (!out->open(path.string(), spec) || !out->write_image(type, data) || !out->close())
-        throw RuntimeError(path.string() + ": cannot write image: " + out->geterror());
+        throw RuntimeError(path.string() + ": cannot encode image: " + out->geterror());
+    writeFileChecked(path, bytes.data(), bytes.size());
 }
 
 float srgbEncode(float c) {

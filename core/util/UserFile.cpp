@@ -1,6 +1,10 @@
 #include "core/util/UserFile.h"
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <fstream>
+#include <memory>
 #include <system_error>
 
 #include "core/util/Error.h"
@@ -59,6 +63,22 @@ void requireRegularFile(const std::filesystem::path& path, const std::string& wh
     const std::string problem = regularFileProblem(path);
     if (!problem.empty())
         throw InputError(path.string(), "", "cannot read " + what + ": " + problem);
+}
+
+void writeFileChecked(const std::filesystem::path& path, const void* data, size_t size) {
+    auto fail = [&](int error) {
+        throw RuntimeError(path.string() +
+                           ": cannot write: " + (error ? std::strerror(error) : "unknown error"));
+    };
+    errno = 0;
+    std::FILE* raw = std::fopen(path.c_str(), "wb");
+    if (!raw) fail(errno);
+    auto closer = [](std::FILE* f) { std::fclose(f); };
+    std::unique_ptr<std::FILE, decltype(closer)> file(raw, closer);
+    if (size > 0 && std::fwrite(data, 1, size, file.get()) != size) fail(errno);
+    if (std::fflush(file.get()) != 0) fail(errno);
+    errno = 0;
+    if (std::fclose(file.release()) != 0) fail(errno);  // the last buffered bytes reach the disk
 }
 
 }  // namespace fovea

@@ -29,4 +29,9 @@ std::string readUserTextFile(const std::filesystem::path& path, uint64_t maxByte
 // Throws InputError(path, "", "cannot read <what>: <reason>") unless path is a regular file.
 void requireRegularFile(const std::filesystem::path& path, const std::string& what);
 
+// Writes `size` bytes to `path` (created or truncated), checking every step down to fclose, so
+// that a full disk or a failed flush is a RuntimeError naming `path` ("cannot write: No space
+// left on device"), never a silently short file.
+void writeFileChecked(const std::filesystem::path& path, const void* data, size_t size);
+
 }  // namespace fovea

@@ -95,3 +95,29 @@ TEST_F(UserFileTest, ReadersOfGraphsCameraPathsAndImagesRefuseDevices) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(UserFileTest, ImageWritesOnAFullDiskAreErrorsNamingTheFile) {
+    // Issue 33, class 3: a write that fails (here every write: the files are links to /dev/full,
+    // which answers ENOSPC) must be an error naming its own file, for PNG as for EXR.
+    image::ImageRGBA img;
+    img.width = img.height = 64;
+    img.pixels.assign(64 * 64 * 4, 0.5f);
+    for (const char* name : {"full.png", "full.exr"}) {
+        const fs::path link = mDir / name;
+        fs::create_symlink("/dev/full", link);
+        std::string message = "(no error)";
+        try {
+            if (link.extension() == ".png")
+                image::writePng(link, img);
+            else
+                image::writeExr(link, img);
+        } catch (const std::exception& e) {
+            message = e.what();
+        }
+        EXPECT_EQ(message.rfind(link.string() + ": ", 0), 0u) << message;
+    }
+}
+
+}  // namespace
