@@ -76,6 +76,13 @@ void OutputFolder::write(const std::string& name,
     std::error_code ec;
     try {
         writeFile(partial);
+    } catch (const RuntimeError& e) {
+        fs::remove(partial, ec);
+        // The writer names the file it wrote (the partial one); the user knows the final name.
+        std::string message = e.what();
+        if (message.rfind(partial.string(), 0) == 0)
+            message.replace(0, partial.string().size(), final.string());
+        throw RuntimeError(message);
     } catch (...) {
         fs::remove(partial, ec);
         throw;

@@ -392,3 +392,20 @@ TEST(CliInputRobustness, NonRegularFilesAreRefusedNotRead) {
     expectInputError(cli({"bench", fifo.string(), "--out", (tmp / "bench").string()}),
                      {fifo.string(), "not a regular file"});
 }
+
+TEST(CliRunRobustness, AFullDiskNamesTheImageAndLeavesNoPartOfIt) {
+    // Issue 33, class 3: the PNG write goes to a link to /dev/full (ENOSPC on every write).
+    // OpenImageIO's own output reported success and a 0-byte PNG took the final name; now the
+    // run exits 1 naming the final file, and neither it nor its partial file remains.
+    TempDir tmp;
+    const fs::path out = tmp / "out";
+    fs::create_directories(out);
+    fs::create_symlink("/dev/full", out / ".partial.pt.radiance.png");
+    Result r = cli({"run", kPathTraceGraph.string(), "--size", "16x16", "--frames", "1", "--out",
+                    out.string(), "--overwrite", "--quiet"});
+    EXPECT_EQ(r.code, 1) << r.describe();
+    EXPECT_TRUE(contains(r.err, (out / "pt.radiance.png").string() + ": cannot write: No space"))
+        << r.describe();
+    EXPECT_FALSE(fs::exists(out / "pt.radiance.png"));
+    EXPECT_FALSE(fs::is_symlink(out / ".partial.pt.radiance.png"));
+}
