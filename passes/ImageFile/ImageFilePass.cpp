@@ -1,5 +1,6 @@
 #include "passes/ImageFile/ImageFilePass.h"
 
+#include <algorithm>
 #include <cstring>
 #include <sstream>
 
@@ -83,6 +84,20 @@ std::vector<float> ImageFilePass::readChecked(const std::string& file, uint32_t 
     if (img.width != width || img.height != height)  // the file changed since the header read
         throw InputError(file, "", "the image changed size while it was read");
     return std::move(img.pixels);
+}
+
+// The device-independent checks, so `fovea validate` refuses what `run` would (issue 33, class 4):
+// an empty path and a malformed frame pattern, with the parameter's JSON pointer.
+void ImageFilePass::validate(const graph::ValidateContext& ctx) const {
+    if (mPath.empty()) ctx.fail("path", "'path' is empty: name an image file or a frame pattern");
+    try {
+        formatFramePattern(mPath, 0, "path");
+    } catch (const InputError& e) {
+        // formatFramePattern names `what` ("path: ..."); fail() adds the pointer instead.
+        ctx.fail("path", e.what() + std::string("path: ").size());
+    }
+    if (std::count(mChannels.begin(), mChannels.end(), ',') > 3)
+        ctx.fail("channels", "at most 4 channels can be selected");
 }
 
 void ImageFilePass::compile(graph::CompileContext& ctx) {

@@ -17,6 +17,7 @@ class ImageFilePass : public graph::Pass {
 public:
     void params(graph::ParamVisitor& v) override;
     void reflect(graph::Reflection& r) const override;
+    void validate(const graph::ValidateContext& ctx) const override;
     void compile(graph::CompileContext& ctx) override;
     void execute(graph::ExecuteContext& ctx) override;
     // A single file (no frame pattern) gives the same image every frame.

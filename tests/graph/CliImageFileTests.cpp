@@ -198,3 +198,17 @@ TEST(CliImageFile, HugeHeadersAreRefusedBeforeAnyPixelIsDecoded) {
                           "32x32", "--frames", "1", "--reference", huge.string()}),
                      {huge.string(), "100000x100000", "32x32"});
 }
+
+TEST(CliImageFile, ValidateRefusesWhatRunWouldWithThePointer) {
+    // Issue 33, class 4: malformed frame patterns used to validate and then fail `run` without the
+    // graph file or pointer. validate() now refuses them with /passes/0/params/path.
+    TempDir tmp;
+    for (const std::string& pattern : {"x%n.exr", "x%d%d.exr", "%", "x%s.exr"}) {
+        const fs::path graph = copyGraph(tmp, pattern, "");
+        Result r = cli({"validate", graph.string()});
+        expectInputError(r, {graph.string(), "/passes/0/params/path", "frame pattern"});
+    }
+    const fs::path graph = copyGraph(tmp, "a.exr", "R,G,B,A,Z");
+    expectInputError(cli({"validate", graph.string()}),
+                     {graph.string(), "/passes/0/params/channels", "at most 4"});
+}
