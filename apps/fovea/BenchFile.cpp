@@ -9,6 +9,7 @@
 #include "apps/fovea/Bench.h"
 #include "core/util/DidYouMean.h"
 #include "core/util/Error.h"
+#include "core/util/JsonUtil.h"
 #include "core/util/UserFile.h"
 
 namespace fovea::app {
@@ -147,8 +148,8 @@ std::vector<uint64_t> parseSeeds(const Reader& r, const json& j) {
 
 BenchSpec parseBenchFile(const fs::path& file) {
     const std::string name = file.string();
-    json j = json::parse(readUserTextFile(file, kMaxJsonFileBytes, "bench file"), nullptr, false);
-    if (j.is_discarded()) throw InputError(name, "", "not valid JSON");
+    // parseJsonText: line and column of a syntax error, the nesting and NUL-byte limits.
+    json j = parseJsonText(readUserTextFile(file, kMaxJsonFileBytes, "bench file"), name);
     Reader r(name);
     r.keys(j, "",
            {"version", "name", "description", "scene", "camera", "size", "stereo", "sun", "env",

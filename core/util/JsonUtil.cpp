@@ -220,6 +220,16 @@ private:
 }  // namespace
 
 nlohmann::json parseJsonText(std::string_view text, const std::string& file) {
+    // nlohmann's lexer reads a NUL byte as the end of the input, so "{...}\0garbage" parsed as
+    // the object alone (issue 33, class 6). JSON text never holds a raw NUL (RFC 8259 §7: control
+    // characters in strings are escaped), so one is an error at its position.
+    if (const size_t nul = text.find('\0'); nul != std::string_view::npos) {
+        const TextPosition at = textPosition(text, nul);
+        throw InputError(file, "",
+                         "line " + std::to_string(at.line) + ", column " +
+                             std::to_string(at.column) +
+                             ": a NUL byte (JSON text cannot contain one; is this a binary file?)");
+    }
     DuplicateKeyDetector detector(file);
     nlohmann::json root;
     try {

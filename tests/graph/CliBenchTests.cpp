@@ -214,7 +214,7 @@ TEST(CliBench, BadBenchFilesNameThePointer) {
     }
     writeText(tmp / "broken.json", "{ not json");
     Result broken = cli({"bench", (tmp / "broken.json").string(), "--out", (tmp / "b").string()});
-    expectInputError(broken, {(tmp / "broken.json").string(), "not valid JSON"});
+    expectInputError(broken, {(tmp / "broken.json").string(), "line 1, column 4", "JSON syntax error"});
 }
 
 TEST(CliBench, ShippedBenchFilesParse) {

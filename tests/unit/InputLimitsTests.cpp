@@ -65,3 +65,14 @@ TEST(JsonUtilLimits, MessagesCutLongQuotedValues) {
     const std::string cutAccents = truncateForMessage(accents, 201);
     EXPECT_EQ(cutAccents, accents.substr(0, 200) + "\u2026");
 }
+
+TEST(JsonUtilLimits, NulByteIsAnErrorNotTheEndOfTheText) {
+    // nlohmann's lexer stops at a NUL: "{...}\0garbage" used to parse as the object (issue 33).
+    const std::string text = std::string("{\"a\": 1}\n") + '\0' + "garbage";
+    InputError e = parseError(text);
+    EXPECT_EQ(e.file(), "f.json");
+    EXPECT_NE(std::string(e.what()).find("line 2, column 1: a NUL byte"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(parseError(std::string("[\"x") + '\0' + "\"]").what()).find("NUL"),
+              std::string::npos);
+}
