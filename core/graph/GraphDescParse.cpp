@@ -80,7 +80,15 @@ private:
         }
         if (auto seed = node.find("seed")) mGraph.defaults.seed = seed->asUnsigned();
         if (auto scene = node.find("scene")) mGraph.defaults.scene = scene->asString();
-        if (auto camera = node.find("camera")) mGraph.defaults.camera = camera->asString();
+        if (auto camera = node.find("camera")) {
+            mGraph.defaults.camera = camera->asString();
+            // A camera path is made for one scene; without a default scene it was ignored in
+            // silence (with --scene it is dropped anyway), so any text passed (issue 33).
+            if (!mGraph.defaults.scene || *mGraph.defaults.scene == "none")
+                camera->fail(
+                    "a default camera needs a default scene ('scene' in 'defaults'): "
+                    "the camera path is made for that scene");
+        }
         if (auto stereo = node.find("stereo")) mGraph.defaults.stereo = stereo->asBool();
     }
 

@@ -319,3 +319,21 @@ TEST(JsonUtil, TypedGetters) {
     EXPECT_EQ(inputErrorOf([&] { root.require("list").find("x"); }),
               "f.json: /p/list: expected an object, got array");
 }
+
+TEST(GraphDesc, DefaultCameraNeedsADefaultScene) {
+    // Issue 33, class 6: without a default scene, defaults.camera was never used, so any text
+    // (even "/etc/passwd") passed; it is an error at its pointer now.
+    const std::string head = R"({"version": 1, "name": "g", "passes": [{"name": "src",
+        "type": "ImageSource"}], "outputs": ["src.color"], "defaults": )";
+    for (const std::string& defaults :
+         {std::string(R"({"camera": "/etc/passwd"})"),
+          std::string(R"({"scene": "none", "camera": "path.json"})")}) {
+        std::string message =
+            inputErrorOf([&] { parseGraphText(head + defaults + "}", "g.json"); });
+        EXPECT_NE(message.find("g.json: /defaults/camera: a default camera needs a default scene"),
+                  std::string::npos)
+            << message;
+    }
+    EXPECT_NO_THROW(parseGraphText(
+        head + R"({"scene": "builtin:cornell", "camera": "path.json"})" + "}", "g.json"));
+}
