@@ -24,10 +24,11 @@ using nlohmann::json;
 void addBenchCommand(CLI::App& app, BenchOptions& o) {
     auto* cmd = app.add_subcommand(
         "bench", "run several graphs and compare run time against error (docs/bench.md)");
-    cmd->add_option("bench", o.file, "bench file (JSON)")->required();
+    cmd->add_option("bench", o.file, "bench file (JSON)")->required()->check(userPath());
     cmd->add_option("--out", o.out, "output directory for bench.json/.csv/.md/.svg")
         ->required()
-        ->check(nonEmptyValue());
+        ->check(nonEmptyValue())
+        ->check(userPath());
     cmd->add_option("--device", o.device, "GPU index or name substring (default: best available)")
         ->check(nonEmptyValue());
     cmd->add_flag("--validation", o.validation, "enable the Vulkan validation layer");

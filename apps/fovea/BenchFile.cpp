@@ -67,7 +67,11 @@ public:
     // A path relative to the bench file's folder.
     fs::path resolve(const json& j, const std::string& pointer) const {
         std::string text = string(j, pointer);
-        return fs::path(text).is_absolute() ? fs::path(text) : fs::path(mFile).parent_path() / text;
+        fs::path p =
+            fs::path(text).is_absolute() ? fs::path(text) : fs::path(mFile).parent_path() / text;
+        if (const std::string problem = pathProblem(p.string()); !problem.empty())
+            fail(pointer, problem);
+        return p;
     }
     // The same, and it must exist.
     std::string path(const json& j, const std::string& pointer, const char* what) const {

@@ -12,6 +12,8 @@
 #include <limits>
 #include <string>
 
+#include "core/util/UserFile.h"
+
 namespace fovea::app {
 
 inline std::string shortNumber(double v) {
@@ -29,6 +31,12 @@ inline CLI::Validator nonEmptyValue() {
                        : std::string();
         },
         "NON-EMPTY");
+}
+
+// A path the operating system can look up (pathProblem: names of at most 255 bytes, no loop of
+// symbolic links), so a bad one is exit 2 naming the flag.
+inline CLI::Validator userPath() {
+    return CLI::Validator([](std::string& value) { return pathProblem(value); }, "PATH");
 }
 
 // A finite number in [min, max] (NaN and infinities rejected).

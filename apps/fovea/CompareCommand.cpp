@@ -16,8 +16,11 @@ void addCompareCommand(CLI::App& app, CompareOptions& o) {
     auto* cmd = app.add_subcommand(
         "compare", "error metrics of an image against a reference (RMSE, relMSE, PSNR, SSIM, ...)");
     cmd->add_option("test", o.test, "image to evaluate (EXR or any format OpenImageIO reads)")
-        ->required();
-    cmd->add_option("reference", o.reference, "reference image of the same size")->required();
+        ->required()
+        ->check(userPath());
+    cmd->add_option("reference", o.reference, "reference image of the same size")
+        ->required()
+        ->check(userPath());
     cmd->add_flag("--json", o.json, "print the metrics as one JSON object");
     cmd->add_option("--peak", o.peak, "signal peak for PSNR and SSIM (default 1 = [0,1] images)")
         ->check(finitePositive());

@@ -6,6 +6,7 @@
 #include <numeric>
 #include <optional>
 
+#include "apps/fovea/CliChecks.h"
 #include "apps/fovea/Commands.h"
 #include "apps/fovea/GraphRunner.h"
 #include "core/graph/PassRegistry.h"
@@ -22,7 +23,8 @@ void addInspectCommand(CLI::App& app, InspectOptions& o) {
                                    "run a graph in a window: graph, previews, timings, "
                                    "live parameters (docs/inspector.md)");
     cmd->add_option("graph", o.graph.graph, "graph file (JSON); reloaded when it changes")
-        ->required();
+        ->required()
+        ->check(userPath());
     cmd->add_option("--size", o.graph.size, "render size WIDTHxHEIGHT (default: graph or 256x256)");
     cmd->add_option("--set", o.graph.sets, "override a parameter: pass.param=value (repeatable)");
     cmd->add_option("--frames", o.frames, "run N frames, then exit (default: until closed)")
@@ -33,7 +35,8 @@ void addInspectCommand(CLI::App& app, InspectOptions& o) {
     cmd->add_option("--script", o.script, "scripted actions per frame (docs/inspector.md)");
     cmd->add_option("--reference", o.reference,
                     "image (EXR, PNG) to compare the preview with: shown beside it, with a "
-                    "difference view");
+                    "difference view")
+        ->check(userPath());
     cmd->add_option("--window", o.window, "window size WIDTHxHEIGHT (default 960x600)");
     cmd->add_option("--seed", o.seed, "random seed (default: graph default or 0)")
         ->check(CLI::Range(int64_t(0), std::numeric_limits<int64_t>::max()));

@@ -34,7 +34,8 @@ void addReferenceCommand(CLI::App& app, ReferenceOptions& o) {
     cmd->add_option("--size", o.run.graph.size, "render size WIDTHxHEIGHT (default: the graph's)")
         ->check(nonEmptyValue());
     cmd->add_option("--out", o.run.out, "output directory (default: out/reference/<scene>)")
-        ->check(nonEmptyValue());
+        ->check(nonEmptyValue())
+        ->check(userPath());
     cmd->add_option("--set", o.run.graph.sets, "override a parameter: pass.param=value");
     cmd->add_option("--seed", o.run.seed, "random seed (default 0)")->check(nonNegativeInt64());
     cmd->add_option("--device", o.run.device, "GPU index or name substring")

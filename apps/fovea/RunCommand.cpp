@@ -31,13 +31,14 @@ namespace fs = std::filesystem;
 
 void addRunCommand(CLI::App& app, RunOptions& o) {
     auto* cmd = app.add_subcommand("run", "run a graph headless and write its outputs + report");
-    cmd->add_option("graph", o.graph.graph, "graph file (JSON)")->required();
+    cmd->add_option("graph", o.graph.graph, "graph file (JSON)")->required()->check(userPath());
     cmd->add_option("--frames", o.frames, "number of frames (default: graph default or 1)")
         ->check(CLI::Range(1, std::numeric_limits<int>::max()));  // 0 is the "default" marker
     cmd->add_option("--size", o.graph.size, "render size WIDTHxHEIGHT (default: graph or 256x256)")
         ->check(nonEmptyValue());
     cmd->add_option("--out", o.out, "output directory (default: out/<graph name>)")
-        ->check(nonEmptyValue());
+        ->check(nonEmptyValue())
+        ->check(userPath());
     cmd->add_option("--set", o.graph.sets, "override a parameter: pass.param=value (repeatable)");
     cmd->add_option("--seed", o.seed, "random seed (default: graph default or 0)")
         ->check(nonNegativeInt64());  // -1: "default"
@@ -52,7 +53,8 @@ void addRunCommand(CLI::App& app, RunOptions& o) {
     cmd->add_option("--reference", o.reference,
                     "reference EXR (all frames) or directory of per-frame EXRs (*frameNNNN*.exr): "
                     "per-frame errors go into report.json")
-        ->check(nonEmptyValue());
+        ->check(nonEmptyValue())
+        ->check(userPath());
     cmd->add_option("--reference-noise", o.referenceNoise,
                     "second reference with another seed (file, directory or %04d pattern, as "
                     "--reference): report.json gets the reference's noise floor next to the errors")

@@ -59,12 +59,14 @@ void addSceneOptions(CLI::App& cmd, SceneOptions& o) {
     cmd.add_option("--scene", o.scene,
                    "scene: builtin:<name> or a .gltf/.glb file; 'none' for none (default: the "
                    "graph's defaults.scene)")
-        ->check(nonEmptyValue());
+        ->check(nonEmptyValue())
+        ->check(userPath());
     cmd.add_option("--camera", o.camera,
                    "camera path JSON (docs/camera-path.md), gltf:<index|name>, or 'frame' (a "
                    "camera framing the scene) (default: the graph's defaults.camera unless "
                    "--scene replaces its scene, else the scene's first camera, else 'frame')")
-        ->check(nonEmptyValue());
+        ->check(nonEmptyValue())
+        ->check(userPath());
     cmd.add_flag("--stereo", o.stereo, "side-by-side stereo rig (seed 000 §3.1)");
     cmd.add_flag("--mono", o.mono, "one eye, even if the graph defaults to stereo");
     cmd.add_option("--ipd", o.ipd, "interpupillary distance in scene units (default 0.064)")
@@ -83,7 +85,8 @@ void addSceneOptions(CLI::App& cmd, SceneOptions& o) {
                    "environment light: an equirectangular (2:1 latitude-longitude) HDR image, EXR "
                    "or Radiance .hdr, lighting the scene from all around and seen as its "
                    "background (docs/scenes.md)")
-        ->check(nonEmptyValue());
+        ->check(nonEmptyValue())
+        ->check(userPath());
     cmd.add_option("--env-intensity", o.envIntensity, "scale of the --env radiance (default 1)")
         ->check(finiteRange(0.0, 1e9));
     cmd.add_option("--env-rotation", o.envRotation,

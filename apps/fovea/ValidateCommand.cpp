@@ -11,7 +11,7 @@ namespace fovea::app {
 
 void addValidateCommand(CLI::App& app, ValidateOptions& o) {
     auto* cmd = app.add_subcommand("validate", "check a graph file without running it");
-    cmd->add_option("graph", o.graph.graph, "graph file (JSON)")->required();
+    cmd->add_option("graph", o.graph.graph, "graph file (JSON)")->required()->check(userPath());
     cmd->add_option("--size", o.graph.size, "render size WIDTHxHEIGHT for size checks")
         ->check(nonEmptyValue());
     cmd->add_option("--set", o.graph.sets, "override a parameter: pass.param=value (repeatable)");

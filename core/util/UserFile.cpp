@@ -11,6 +11,27 @@
 
 namespace fovea {
 
+std::string pathProblem(const std::string& path) {
+    constexpr size_t kMaxPath = 4095, kMaxComponent = 255;  // Linux PATH_MAX - 1, NAME_MAX
+    if (path.size() > kMaxPath)
+        return "the path is " + std::to_string(path.size()) + " bytes, more than the " +
+               std::to_string(kMaxPath) + " a path may have";
+    size_t start = 0;
+    while (start <= path.size()) {
+        size_t end = path.find('/', start);
+        if (end == std::string::npos) end = path.size();
+        if (end - start > kMaxComponent)
+            return "a name in the path is " + std::to_string(end - start) + " bytes ('" +
+                   path.substr(start, 24) + "...'), more than the " +
+                   std::to_string(kMaxComponent) + " a file name may have";
+        start = end + 1;
+    }
+    std::error_code ec;
+    (void)std::filesystem::status(path, ec);  // only the error matters here
+    if (ec == std::errc::too_many_symbolic_link_levels) return "a loop of symbolic links";
+    return "";
+}
+
 std::string regularFileProblem(const std::filesystem::path& path) {
     std::error_code ec;
     const auto status = std::filesystem::status(path, ec);  // follows symbolic links

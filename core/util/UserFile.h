@@ -14,6 +14,12 @@ namespace fovea {
 // Graph files, camera paths and bench files: JSON text written by hand or by a script.
 constexpr uint64_t kMaxJsonFileBytes = uint64_t(64) << 20;
 
+// "" when the operating system can look `path` up, else why not: a component over 255 bytes, a
+// path over 4095 bytes, or a loop of symbolic links. Checked where a path enters (CLI flags,
+// bench files), so it is exit 2 naming the flag or pointer, not a raw "filesystem error" (exit 1)
+// from deep inside a command (issue 33, class 5).
+std::string pathProblem(const std::string& path);
+
 // "" when `path` names an existing regular file (links followed), else why not: "file not
 // found", "not a regular file (...)", or the file-system error.
 std::string regularFileProblem(const std::filesystem::path& path);

@@ -409,3 +409,26 @@ TEST(CliRunRobustness, AFullDiskNamesTheImageAndLeavesNoPartOfIt) {
     EXPECT_FALSE(fs::exists(out / "pt.radiance.png"));
     EXPECT_FALSE(fs::is_symlink(out / ".partial.pt.radiance.png"));
 }
+
+TEST(CliInputRobustness, UnusablePathsAreInputErrorsNamingTheFlag) {
+    // Issue 33, class 5: a file name over 255 bytes or a loop of symbolic links used to end in
+    // exit 1 "filesystem error: ..."; they are bad input: exit 2 naming the flag or the pointer.
+    TempDir tmp;
+    const std::string longName = (tmp / std::string(300, 'a')).string();
+    const fs::path loop = tmp / "loop1";
+    fs::create_symlink(tmp / "loop2", loop);
+    fs::create_symlink(loop, tmp / "loop2");
+    expectInputError(runSmall(kPathTraceGraph, longName), {"--out", "more than the 255"});
+    expectInputError(runSmall(kPathTraceGraph, loop), {"--out", "a loop of symbolic links"});
+    expectInputError(runSmall(kPathTraceGraph, tmp / "o", {"--reference", longName + ".exr"}),
+                     {"--reference", "more than the 255"});
+    expectInputError(cli({"compare", loop.string(), "b.exr"}),
+                     {"test", "a loop of symbolic links"});
+    const fs::path bench = tmp / "b.json";
+    writeText(bench, R"({"version": 1, "scene": "builtin:cornell", "size": [8, 8], "frames": 2,
+        "reference": ")" +
+                         longName + R"(.exr", "graphs": [{"file": ")" + kPathTraceGraph.string() +
+                         R"("}]})");
+    expectInputError(cli({"bench", bench.string(), "--out", (tmp / "bo").string()}),
+                     {bench.string(), "/reference", "more than the 255"});
+}
