@@ -72,6 +72,28 @@ double bumpShadowingTerm(glm::dvec3 ng, glm::dvec3 ns, glm::dvec3 wi) {
     return g >= 1.0 ? 1.0 : g <= 0.0 ? 0.0 : -g * g * g + g * g + g;
 }
 
+// GBuffer + PathTrace (direct light only, `ptParams` added to its params) on `loaded`, 8x8
+// looking straight down at the plane; one frame run.
+std::unique_ptr<graph::RenderGraph> renderFromAbove(const test::LoadedScene& loaded,
+                                                    const std::string& ptParams,
+                                                    const std::string& outputs) {
+    const std::string text =
+        R"({ "version": 1, "name": "nm", "passes": [ { "name": "gb", "type": "GBuffer" },)"
+        R"( { "name": "pt", "type": "PathTrace", "params": { "maxBounces": 0)" +
+        ptParams +
+        R"( } } ], "edges": [ { "from": "gb.visibility", "to": "pt.visibility" } ],)"
+        R"( "outputs": [ )" +
+        outputs + " ] }";
+    auto g = test::buildSceneGraph(loaded, text, "nm", 1, 8, 8);
+    scene::CameraDesc c;
+    c.position = {0.3f, 2.0f, 0.2f};
+    c.target = {0.3f, 0.0f, 0.2f};
+    c.up = {0.0f, 0.0f, -1.0f};
+    g->setCamera(scene::makeFrameCamera(c, 8, 8, {}, 0, nullptr, nullptr));
+    g->runFrame();
+    return g;
+}
+
 class NormalMapTest : public GpuTest {
 protected:
     static void SetUpTestSuite() { registerBuiltinPasses(); }
@@ -84,18 +106,7 @@ TEST_F(NormalMapTest, TiltedNormalShadesAndGuidesExactly) {
             loaded.scene = tiltedPlane(scale, withTangents);
             loaded.gpu = std::make_unique<scene::SceneGpu>(test::sharedGpuContext(), loaded.scene);
             EXPECT_EQ(loaded.gpu->hasNormalMaps(), withTangents);
-            const std::string text =
-                R"({ "version": 1, "name": "nm", "passes": [ { "name": "gb", "type": "GBuffer" },)"
-                R"( { "name": "pt", "type": "PathTrace", "params": { "maxBounces": 0 } } ],)"
-                R"( "edges": [ { "from": "gb.visibility", "to": "pt.visibility" } ],)"
-                R"( "outputs": [ "pt.radiance", "gb.normal" ] })";
-            auto g = test::buildSceneGraph(loaded, text, "nm", 1, 8, 8);
-            scene::CameraDesc c;
-            c.position = {0.3f, 2.0f, 0.2f};
-            c.target = {0.3f, 0.0f, 0.2f};
-            c.up = {0.0f, 0.0f, -1.0f};
-            g->setCamera(scene::makeFrameCamera(c, 8, 8, {}, 0, nullptr, nullptr));
-            g->runFrame();
+            auto g = renderFromAbove(loaded, "", R"("pt.radiance", "gb.normal")");
             const auto radiance = g->image("pt.radiance").downloadRGBA32F(ctx());
             const auto normal = g->image("gb.normal").downloadRGBA32F(ctx());
             const glm::vec3 n = withTangents ? expectedNormal(scale) : glm::vec3(0, 1, 0);
@@ -119,20 +130,9 @@ TEST_F(NormalMapTest, BumpShadowingDarkensGrazingLightExactly) {
             test::LoadedScene loaded;
             loaded.scene = tiltedPlane(1.0f, withTangents, -towardsSun);
             loaded.gpu = std::make_unique<scene::SceneGpu>(test::sharedGpuContext(), loaded.scene);
-            const std::string text =
-                R"({ "version": 1, "name": "nm", "passes": [ { "name": "gb", "type": "GBuffer" },)"
-                R"( { "name": "pt", "type": "PathTrace", "params": { "maxBounces": 0,)"
-                R"( "bumpShadowing": )" +
-                std::string(bumpShadowing ? "true" : "false") +
-                R"( } } ], "edges": [ { "from": "gb.visibility", "to": "pt.visibility" } ],)"
-                R"( "outputs": [ "pt.radiance" ] })";
-            auto g = test::buildSceneGraph(loaded, text, "nm", 1, 8, 8);
-            scene::CameraDesc c;
-            c.position = {0.3f, 2.0f, 0.2f};
-            c.target = {0.3f, 0.0f, 0.2f};
-            c.up = {0.0f, 0.0f, -1.0f};
-            g->setCamera(scene::makeFrameCamera(c, 8, 8, {}, 0, nullptr, nullptr));
-            g->runFrame();
+            auto g = renderFromAbove(
+                loaded, std::string(", \"bumpShadowing\": ") + (bumpShadowing ? "true" : "false"),
+                R"("pt.radiance")");
             const auto radiance = g->image("pt.radiance").downloadRGBA32F(ctx());
             const glm::dvec3 n =
                 withTangents ? glm::dvec3(expectedNormal(1.0f)) : glm::dvec3(0, 1, 0);

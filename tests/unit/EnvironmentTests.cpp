@@ -19,10 +19,13 @@
 #include "core/image/ImageIO.h"
 #include "core/scene/Environment.h"
 #include "core/util/Error.h"
+#include "tests/unit/InputErrorOf.h"
 
 using namespace fovea;
 using namespace fovea::scene;
 namespace fs = std::filesystem;
+
+using fovea::test::inputErrorOf;
 
 namespace {
 
@@ -77,21 +80,6 @@ fs::path writeMap(const TempFolder& dir, const std::string& name, uint32_t width
     const fs::path path = dir / name;
     image::writeExr(path, img);
     return path;
-}
-
-// The InputError message of `f`, failing the test when nothing (or something else) is thrown.
-template <typename F>
-std::string inputErrorOf(F&& f) {
-    try {
-        f();
-    } catch (const InputError& e) {
-        return e.what();
-    } catch (const std::exception& e) {
-        ADD_FAILURE() << "not an InputError: " << e.what();
-        return {};
-    }
-    ADD_FAILURE() << "no error";
-    return {};
 }
 
 bool contains(const std::string& text, const std::string& part) {

@@ -12,10 +12,13 @@
 #include "core/graph/GraphDesc.h"
 #include "core/util/Error.h"
 #include "core/util/JsonUtil.h"
+#include "tests/unit/InputErrorOf.h"
 
 namespace fs = std::filesystem;
 using namespace fovea;
 using namespace fovea::graph;
+
+using fovea::test::inputErrorOf;
 
 namespace {
 
@@ -65,18 +68,6 @@ public:
 private:
     fs::path mPath;
 };
-
-// what() of the InputError thrown by `body`, or a test failure if none is thrown.
-template <typename Body>
-std::string inputErrorOf(Body body) {
-    try {
-        body();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "expected an InputError";
-    return "";
-}
 
 }  // namespace
 

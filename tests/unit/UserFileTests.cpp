@@ -14,9 +14,12 @@
 #include "core/scene/CameraPath.h"
 #include "core/util/Error.h"
 #include "core/util/UserFile.h"
+#include "tests/unit/InputErrorOf.h"
 
 using namespace fovea;
 namespace fs = std::filesystem;
+
+using fovea::test::inputErrorOf;
 
 namespace {
 
@@ -33,16 +36,6 @@ protected:
     }
     fs::path mDir;
 };
-
-template <typename F>
-std::string inputErrorOf(F&& f) {
-    try {
-        f();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "(no InputError)";
-}
 
 TEST_F(UserFileTest, ReadsRegularFilesAndLinksToThem) {
     const fs::path file = mDir / "a.json";
@@ -61,7 +54,7 @@ TEST_F(UserFileTest, RefusesWhatIsNotARegularFileBeforeOpeningIt) {
         const std::string message = inputErrorOf([&] { readUserTextFile(p, 100, "graph file"); });
         EXPECT_EQ(message.rfind(p.string() + ": cannot read graph file: not a regular file", 0), 0u)
             << message;
-        EXPECT_NE(inputErrorOf([&] { requireRegularFile(p, "image"); }), "(no InputError)");
+        EXPECT_NE(inputErrorOf([&] { requireRegularFile(p, "image"); }), "");
     }
     EXPECT_EQ(regularFileProblem(mDir), "is a directory, not a file");
     EXPECT_EQ(regularFileProblem(mDir / "missing"), "file not found");
