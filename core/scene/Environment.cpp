@@ -7,6 +7,7 @@
 
 #include "core/image/ImageIO.h"
 #include "core/util/Error.h"
+#include "core/util/UserFile.h"
 
 namespace fovea::scene {
 namespace {
@@ -54,11 +55,12 @@ EnvironmentMap loadEnvironment(const std::filesystem::path& path, float intensit
                          "must be a finite number >= 0, got " + formatFloat(intensity));
     if (!std::isfinite(rotationDegrees))
         throw InputError("--env-rotation", "", "must be a finite number of degrees");
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec))
+    if (const std::string problem = regularFileProblem(path); !problem.empty())
         throw InputError(file, "",
-                         std::filesystem::exists(path, ec) ? "environment map is not a regular file"
-                                                           : "environment map not found");
+                         problem == "file not found"
+                             ? "environment map not found"
+                             : "environment map is not a regular file (" + problem + ")");
+    std::error_code ec;
     if (std::filesystem::file_size(path, ec) == 0)
         throw InputError(file, "", "environment map is an empty file");
     // readImage: InputError naming the file for anything OpenImageIO cannot read or decode, and

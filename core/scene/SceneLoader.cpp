@@ -7,6 +7,7 @@
 #include "core/scene/BuiltinScenes.h"
 #include "core/scene/GltfLoader.h"
 #include "core/util/Error.h"
+#include "core/util/UserFile.h"
 
 namespace fovea::scene {
 
@@ -25,11 +26,10 @@ Scene loadScene(const std::string& spec, bool allowExternalUris) {
                          "unsupported scene file type '" + extension +
                              "' (expected .gltf, .glb or one of the built-in scenes" + names + ")");
     }
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) {
+    if (const std::string problem = regularFileProblem(path); !problem.empty())
         throw InputError(
-            spec, "", std::filesystem::exists(path, ec) ? "not a regular file" : "file not found");
-    }
+            spec, "",
+            problem == "file not found" ? problem : "not a regular file (" + problem + ")");
     GltfLoadOptions options;
     options.allowExternalUris = allowExternalUris;
     return loadGltf(path, options);
