@@ -8,7 +8,6 @@
 #include "apps/fovea/CliChecks.h"
 #include "apps/fovea/Commands.h"
 #include "core/image/ImageMetrics.h"
-#include "core/util/Error.h"
 
 namespace fovea::app {
 
@@ -33,12 +32,8 @@ int compareCommand(const CompareOptions& o) {
     options.peak = o.peak;
     options.relMseEpsilon = o.epsilon;
     // Headers first: images of different sizes are refused before either is decoded.
-    const image::ImageSize a = image::readImageSize(o.test), b = image::readImageSize(o.reference);
-    if (a.width != b.width || a.height != b.height)
-        throw fovea::InputError(o.test + " is " + std::to_string(a.width) + "x" +
-                                std::to_string(a.height) + " but " + o.reference + " is " +
-                                std::to_string(b.width) + "x" + std::to_string(b.height) +
-                                ": images of different sizes cannot be compared");
+    const image::ImageSize testSize = image::readImageSize(o.test);  // the test image first
+    image::checkSameSize(testSize, image::readImageSize(o.reference), o.test, o.reference);
     const image::ImageRGBA test = image::readImage(o.test);
     const image::ImageRGBA reference = image::readImage(o.reference);
     const image::ImageMetrics m =

@@ -75,11 +75,18 @@ void checkFinite(const ImageRGBA& image, const std::string& name) {
             }
 }
 
+void checkSameSize(ImageSize a, ImageSize b, const std::string& nameA, const std::string& nameB) {
+    auto text = [](ImageSize s) {
+        return std::to_string(s.width) + "x" + std::to_string(s.height);
+    };
+    if (a.width != b.width || a.height != b.height)
+        throw InputError(nameA + " is " + text(a) + " but " + nameB + " is " + text(b) +
+                         ": images of different sizes cannot be compared");
+}
+
 void checkSameSize(const ImageRGBA& a, const ImageRGBA& b, const std::string& nameA,
                    const std::string& nameB) {
-    if (a.width != b.width || a.height != b.height)
-        throw InputError(nameA + " is " + sizeText(a) + " but " + nameB + " is " + sizeText(b) +
-                         ": images of different sizes cannot be compared");
+    checkSameSize(ImageSize{a.width, a.height}, ImageSize{b.width, b.height}, nameA, nameB);
 }
 
 double ssimPlane(const std::vector<double>& x, const std::vector<double>& y, uint32_t width,

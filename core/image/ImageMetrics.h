@@ -47,6 +47,8 @@ nlohmann::json metricsToJson(const ImageMetrics& metrics, const MetricOptions& o
 // Throws InputError "<name>: pixel (x, y) channel G is NaN" at the first non-finite RGB value.
 void checkFinite(const ImageRGBA& image, const std::string& name);
 // Throws InputError naming both images and their sizes when they differ.
+// The same check on header sizes (readImageSize), before anything is decoded.
+void checkSameSize(ImageSize a, ImageSize b, const std::string& nameA, const std::string& nameB);
 void checkSameSize(const ImageRGBA& a, const ImageRGBA& b, const std::string& nameA,
                    const std::string& nameB);
 
