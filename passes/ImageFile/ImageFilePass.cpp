@@ -10,6 +10,11 @@
 
 namespace fovea::passes {
 
+std::string framePatternError(const std::string& pattern) {
+    return "frame pattern '" + pattern +
+           "': only one integer conversion (%d, %4d, %04d) is allowed, '%%' is a literal %";
+}
+
 std::string formatFramePattern(const std::string& pattern, uint64_t frame,
                                const std::string& what) {
     std::string out;
@@ -31,10 +36,7 @@ std::string formatFramePattern(const std::string& pattern, uint64_t frame,
         while (j < pattern.size() && pattern[j] >= '0' && pattern[j] <= '9' && width < 100)
             width = width * 10 + size_t(pattern[j++] - '0');
         if (j >= pattern.size() || pattern[j] != 'd' || width > 32 || ++conversions > 1)
-            throw InputError(what, "",
-                             "frame pattern '" + pattern +
-                                 "': only one integer conversion (%d, %4d, %04d) is allowed, "
-                                 "'%%' is a literal %");
+            throw InputError(what, "", framePatternError(pattern));
         std::string number = std::to_string(frame);
         if (number.size() < width) number.insert(0, width - number.size(), zeros ? '0' : ' ');
         out += number;
@@ -92,9 +94,8 @@ void ImageFilePass::validate(const graph::ValidateContext& ctx) const {
     if (mPath.empty()) ctx.fail("path", "'path' is empty: name an image file or a frame pattern");
     try {
         formatFramePattern(mPath, 0, "path");
-    } catch (const InputError& e) {
-        // formatFramePattern names `what` ("path: ..."); fail() adds the pointer instead.
-        ctx.fail("path", e.what() + std::string("path: ").size());
+    } catch (const InputError&) {
+        ctx.fail("path", framePatternError(mPath));
     }
     if (std::count(mChannels.begin(), mChannels.end(), ',') > 3)
         ctx.fail("channels", "at most 4 channels can be selected");

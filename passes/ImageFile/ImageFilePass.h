@@ -36,6 +36,9 @@ private:
     std::unique_ptr<gpu::Buffer> mStaging;  // host-visible, width * height * 16 bytes
 };
 
+// The message for a malformed frame pattern (formatFramePattern's InputError, validate()).
+std::string framePatternError(const std::string& pattern);
+
 // `pattern` with its one printf-style integer conversion (`%d`, `%4d`, `%04d`; `%%` is a
 // literal '%') replaced by `frame`. Any other conversion, or more than one, is an InputError
 // naming `what` (the pattern is never handed to printf). No conversion: `pattern` itself.

@@ -203,7 +203,7 @@ TEST(CliImageFile, ValidateRefusesWhatRunWouldWithThePointer) {
     // Issue 33, class 4: malformed frame patterns used to validate and then fail `run` without the
     // graph file or pointer. validate() now refuses them with /passes/0/params/path.
     TempDir tmp;
-    for (const std::string& pattern : {"x%n.exr", "x%d%d.exr", "%", "x%s.exr"}) {
+    for (const char* pattern : {"x%n.exr", "x%d%d.exr", "%", "x%s.exr"}) {
         const fs::path graph = copyGraph(tmp, pattern, "");
         Result r = cli({"validate", graph.string()});
         expectInputError(r, {graph.string(), "/passes/0/params/path", "frame pattern"});
