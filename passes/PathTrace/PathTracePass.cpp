@@ -5,6 +5,7 @@
 #include "core/sampling/SampleLayout.h"
 #include "core/scene/SceneFeatures.h"
 #include "core/scene/SceneGpu.h"
+#include "core/shading/SpecularAlbedo.h"
 #include "core/util/Error.h"
 #include "core/vk/Barriers.h"
 #include "core/vk/ComputePipeline.h"
@@ -109,6 +110,25 @@ void PathTracePass::reflect(graph::Reflection& r) const {
     r.output("indirect", vk::Format::eR16G16B16A16Sfloat)
         .sameAs("visibility")
         .doc("light after two or more reflections; a = samples");
+    // Issue 26 (seed 004 "Cooking specular denoiser": diffuse and specular must be separated).
+    r.output("diffuse", vk::Format::eR32G32B32A32Sfloat)
+        .sameAs("visibility")
+        .doc(
+            "light leaving through the primary vertex's diffuse lobe / diffuse_albedo' (emission "
+            "excluded); a = normalized hit distance of the diffuse rays (1 = far or none)");
+    r.output("specular", vk::Format::eR32G32B32A32Sfloat)
+        .sameAs("visibility")
+        .doc(
+            "light leaving through the specular (GGX) lobe / specular_albedo'; a = normalized "
+            "hit distance of the specular rays (1 = far or none); 0 with brdf = lambert");
+    r.output("diffuse_albedo", vk::Format::eR16G16B16A16Sfloat)
+        .sameAs("visibility")
+        .doc("(1 - metallic) baseColor of the primary vertex (lambert: baseColor); a = samples");
+    r.output("specular_albedo", vk::Format::eR16G16B16A16Sfloat)
+        .sameAs("visibility")
+        .doc(
+            "pre-integrated GGX reflectance E(F0, roughness, NoV) of the primary vertex "
+            "(core/shading/SpecularAlbedo.h); 0 with brdf = lambert; a = samples");
 }
 
 void PathTracePass::compile(graph::CompileContext& ctx) {
@@ -147,8 +167,18 @@ void PathTracePass::compile(graph::CompileContext& ctx) {
                (mLightSampling != "area" ? ",light-" + mLightSampling : "") +
                (mLastBounceMis ? ",last-mis" : "") + (mStratifyLight ? ",stratified" : "") +
                (mCountRays ? ",count-rays" : "");
-    mTrace = ctx.createPipeline("pathtrace/pathtrace.comp", defines,
-                                {sampling::kSampleLayoutBinding, "pathtrace_rays"});
+    mTrace = ctx.createPipeline(
+        "pathtrace/pathtrace.comp", defines,
+        {sampling::kSampleLayoutBinding, "pathtrace_rays", "specular_albedo_table"});
+    if (!mSpecularAlbedo) {  // constant data: uploaded once per pass, kept across rebuilds
+        const auto& table = shading::bakedSpecularAlbedoTable();
+        const size_t bytes = table.size() * sizeof(glm::vec2);
+        mSpecularAlbedo = std::make_unique<gpu::Buffer>(
+            ctx.gpu(), bytes,
+            vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false,
+            name() + ".specular_albedo");
+        mSpecularAlbedo->upload(ctx.gpu(), table.data(), bytes);
+    }
     mRayCounter.reset();
     mCounterCleared = false;
     if (mCountRays)
@@ -183,6 +213,7 @@ void PathTracePass::execute(graph::ExecuteContext& ctx) {
             vk::AccessFlagBits2::eShaderStorageRead | vk::AccessFlagBits2::eShaderStorageWrite);
     }
     if (mRayCounter) mTrace->bind("pathtrace_rays", *mRayCounter);
+    mTrace->bind("specular_albedo_table", *mSpecularAlbedo);
     ctx.bindFields(*mTrace);
     mLayoutInput->bind(*mTrace, mUseLayout ? &ctx.buffer(sampling::kSampleLayoutField) : nullptr);
     uint64_t seed = ctx.frame().seed;

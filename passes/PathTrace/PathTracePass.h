@@ -2,8 +2,8 @@
 // primary hit (GBuffer `visibility` or own jittered camera rays), next-event estimation, one
 // cosine/BRDF-sampled indirect bounce (`maxBounces`, default 1) with next-event estimation at its
 // hit. Outputs radiance (a = samples), albedo-demodulated radiance, the first indirect hit
-// distance and the direct/indirect split. Optional sample layout (seed 000 §3.2 coordinates
-// buffer). docs/passes/PathTrace.md.
+// distance, the direct/indirect split and the diffuse/specular split (issue 26). Optional sample
+// layout (seed 000 §3.2 coordinates buffer). docs/passes/PathTrace.md.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -60,8 +60,9 @@ private:
     std::unique_ptr<gpu::ComputePipeline> mTrace;
     std::unique_ptr<gpu::ComputePipeline> mClear;
     std::unique_ptr<sampling::SampleLayoutInput> mLayoutInput;
-    std::unique_ptr<gpu::Buffer> mRayCounter;  // countRays: kRayKinds x uint32, summed on GPU
-    bool mCounterCleared = false;              // zeroed by the first execute after compile
+    std::unique_ptr<gpu::Buffer> mSpecularAlbedo;  // the GGX reflectance table (SpecularAlbedo.h)
+    std::unique_ptr<gpu::Buffer> mRayCounter;      // countRays: kRayKinds x uint32, summed on GPU
+    bool mCounterCleared = false;                  // zeroed by the first execute after compile
 };
 
 }  // namespace fovea::passes

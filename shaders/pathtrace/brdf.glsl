@@ -95,26 +95,36 @@ float brdfBumpShadowing(vec3 nSmooth, vec3 n, vec3 wi) {
     return g * (1.0 + g * (1.0 - g));
 }
 
-// f(wo, wi) (without the cosine) with its diffuse lobe times diffuseScale (bump shadowing; 1 =
-// the plain BRDF); zero below the surface.
-vec3 brdfEvalScaled(BrdfInput m, vec3 n, vec3 wo, vec3 wi, float diffuseScale) {
+// f(wo, wi) (without the cosine) split into its two lobes, the diffuse one times diffuseScale
+// (bump shadowing; 1 = the plain BRDF); zero below the surface. Lambert: all of it is diffuse.
+// The split feeds PathTrace's `diffuse` / `specular` signals (issue 26, seed 004).
+void brdfEvalLobes(BrdfInput m, vec3 n, vec3 wo, vec3 wi, float diffuseScale, out vec3 diffuse,
+                   out vec3 specular) {
+    diffuse = vec3(0.0);
+    specular = vec3(0.0);
     float nl = dot(n, wi);
-    if (nl <= 0.0) return vec3(0.0);
+    if (nl <= 0.0) return;
 #if BRDF_GGX
     float nv = max(dot(n, wo), kMinCos);
     vec3 h = wo + wi;
     float hl = length(h);
-    if (!(hl > 0.0)) return vec3(0.0);  // wi = -wo: no half vector (cannot be above n and wo)
+    if (!(hl > 0.0)) return;  // wi = -wo: no half vector (cannot be above n and wo)
     h /= hl;
     float a = brdfAlpha(m);
     vec3 f = brdfSchlick(brdfF0(m), dot(h, wi));
     float g2 = 1.0 / (1.0 + brdfLambda(nv, a) + brdfLambda(max(nl, kMinCos), a));
-    vec3 spec = f * (brdfD(max(dot(n, h), 0.0), a) * g2 / (4.0 * nv * max(nl, kMinCos)));
-    vec3 diffuse = (1.0 - f) * (1.0 - m.metallic) * m.baseColor / kPi;
-    return diffuse * diffuseScale + spec;
+    specular = f * (brdfD(max(dot(n, h), 0.0), a) * g2 / (4.0 * nv * max(nl, kMinCos)));
+    diffuse = (1.0 - f) * (1.0 - m.metallic) * m.baseColor / kPi * diffuseScale;
 #else
-    return m.baseColor / kPi * diffuseScale;
+    diffuse = m.baseColor / kPi * diffuseScale;
 #endif
+}
+
+// f(wo, wi) (without the cosine), both lobes, the diffuse one times diffuseScale.
+vec3 brdfEvalScaled(BrdfInput m, vec3 n, vec3 wo, vec3 wi, float diffuseScale) {
+    vec3 d, s;
+    brdfEvalLobes(m, n, wo, wi, diffuseScale, d, s);
+    return d + s;
 }
 
 vec3 brdfEval(BrdfInput m, vec3 n, vec3 wo, vec3 wi) { return brdfEvalScaled(m, n, wo, wi, 1.0); }
@@ -142,11 +152,13 @@ float brdfPdf(BrdfInput m, vec3 n, vec3 wo, vec3 wi) {
 }
 
 // Samples wi; returns false when no direction above the surface was produced. u.x picks the
-// lobe (GGX only), u.yz the direction.
-bool brdfSample(BrdfInput m, vec3 n, vec3 wo, vec3 u, out vec3 wi) {
+// lobe (GGX only; `specularLobe` says which), u.yz the direction.
+bool brdfSampleLobe(BrdfInput m, vec3 n, vec3 wo, vec3 u, out vec3 wi, out bool specularLobe) {
+    specularLobe = false;
 #if BRDF_GGX
     float nv = max(dot(n, wo), kMinCos);
     if (u.x < brdfSpecularProbability(m, nv)) {
+        specularLobe = true;
         // Heitz 2018, "Sampling the GGX Distribution of Visible Normals", in the frame of n.
         vec3 t, b;
         brdfBasis(n, t, b);
@@ -173,16 +185,35 @@ bool brdfSample(BrdfInput m, vec3 n, vec3 wo, vec3 u, out vec3 wi) {
     return dot(n, wi) > 0.0;
 }
 
-// f cos / pdf for a direction from brdfSample (0 when the pdf vanishes), the diffuse lobe times
-// diffuseScale as in brdfEvalScaled.
-vec3 brdfWeightScaled(BrdfInput m, vec3 n, vec3 wo, vec3 wi, float diffuseScale) {
+bool brdfSample(BrdfInput m, vec3 n, vec3 wo, vec3 u, out vec3 wi) {
+    bool specularLobe;
+    return brdfSampleLobe(m, n, wo, u, wi, specularLobe);
+}
+
+// f cos / pdf for a direction from brdfSample (0 when the pdf vanishes) split by lobe, the
+// diffuse lobe times diffuseScale as in brdfEvalLobes. The pdf is the mixture's, so both parts
+// are unbiased whichever lobe produced wi.
+void brdfWeightLobes(BrdfInput m, vec3 n, vec3 wo, vec3 wi, float diffuseScale, out vec3 diffuse,
+                     out vec3 specular) {
 #if BRDF_GGX
+    diffuse = vec3(0.0);
+    specular = vec3(0.0);
     float pdf = brdfPdf(m, n, wo, wi);
-    if (!(pdf > 0.0)) return vec3(0.0);
-    return brdfEvalScaled(m, n, wo, wi, diffuseScale) * dot(n, wi) / pdf;  // pdf > 0 here
+    if (!(pdf > 0.0)) return;
+    brdfEvalLobes(m, n, wo, wi, diffuseScale, diffuse, specular);
+    float k = dot(n, wi) / pdf;  // pdf > 0 here
+    diffuse *= k;
+    specular *= k;
 #else
-    return m.baseColor * diffuseScale;  // (rho / pi) cos / (cos / pi)
+    diffuse = m.baseColor * diffuseScale;  // (rho / pi) cos / (cos / pi)
+    specular = vec3(0.0);
 #endif
+}
+
+vec3 brdfWeightScaled(BrdfInput m, vec3 n, vec3 wo, vec3 wi, float diffuseScale) {
+    vec3 d, s;
+    brdfWeightLobes(m, n, wo, wi, diffuseScale, d, s);
+    return d + s;
 }
 
 #endif

@@ -21,9 +21,11 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "common/bvh.glsl"
 #include "common/camera.glsl"
 #include "common/color.glsl"
+#include "common/hit_distance.glsl"
 #include "common/random.glsl"
 #include "common/sample_layout.glsl"
 #include "common/scene_sample.glsl"
+#include "common/specular_albedo.glsl"
 #include "pathtrace/brdf.glsl"
 
 layout(rgba32ui) uniform readonly uimage2D visibility;
@@ -33,6 +35,12 @@ layout(rgba32f) uniform writeonly image2D demodulated;
 layout(r32f) uniform writeonly image2D hit_distance;
 layout(rgba16f) uniform writeonly image2D direct;
 layout(rgba16f) uniform writeonly image2D indirect;
+// The signals split by lobe at the primary vertex (issue 26, docs/passes/PathTrace.md "Diffuse and
+// specular signals"): rgb demodulated, a = normalized hit distance of the lobe's own first ray.
+layout(rgba32f) uniform writeonly image2D diffuse;
+layout(rgba32f) uniform writeonly image2D specular;
+layout(rgba16f) uniform writeonly image2D diffuse_albedo;
+layout(rgba16f) uniform writeonly image2D specular_albedo;
 
 #ifndef PATHTRACE_COUNT_RAYS
 #define PATHTRACE_COUNT_RAYS 0
@@ -225,6 +233,14 @@ struct PathResult {
     vec3 emission;   // primary emission alone (for demodulation)
     vec3 albedo;     // own first-hit base colour (0 on a miss)
     float hitT;      // first indirect ray's hit distance, 0 = no hit
+    // Split at the primary vertex by lobe (emission excluded): diffuse + specular = direct +
+    // indirect - emission before clamping.
+    vec3 diffuse, specular;
+    vec3 diffuseAlbedo;   // (1 - metallic) baseColor (Lambert: baseColor)
+    vec3 specularAlbedo;  // pre-integrated E(F0, roughness, NoV) (0 for Lambert)
+    float roughness;      // primary vertex (1 for Lambert)
+    float viewZ;          // primary vertex's view depth
+    int hitLobe;          // lobe of the first indirect ray: 0 none, 1 diffuse, 2 specular
 };
 
 // The diffuse lobe's bump-shadowing factor at v for light from wi (parameter bumpShadowing;
@@ -237,8 +253,11 @@ float bumpShadowing(Vertex v, vec3 wi) {
 #endif
 }
 
-// Next-event estimation at v; `last` = no BRDF ray follows (full weight, see header).
-vec3 nextEvent(Vertex v, uint vertex, bool last) {
+// Next-event estimation at v; `last` = no BRDF ray follows (full weight, see header). Returns the
+// contribution of each lobe (their sum is the estimate).
+void nextEvent(Vertex v, uint vertex, bool last, out vec3 diffusePart, out vec3 specularPart) {
+    diffusePart = vec3(0.0);
+    specularPart = vec3(0.0);
     SceneLightSample ls;
     vec3 p = bvhOffsetRay(v.position, v.ng);
 #if PATHTRACE_STRATIFY_LIGHT
@@ -249,29 +268,42 @@ vec3 nextEvent(Vertex v, uint vertex, bool last) {
     vec4 u = vec4(rand(vertex, kDimLight), rand(vertex, kDimLight + 1u),
                   rand(vertex, kDimLight + 2u), rand(vertex, kDimLight + 3u));
 #endif
-    if (!sceneSampleLight(p, u, ls)) return vec3(0.0);
+    if (!sceneSampleLight(p, u, ls)) return;
     float cosS = dot(v.ns, ls.direction);
-    if (cosS <= 0.0 || dot(v.ng, ls.direction) <= 0.0) return vec3(0.0);
-    vec3 f = brdfEvalScaled(v.brdf, v.ns, v.wo, ls.direction, bumpShadowing(v, ls.direction));
-    if (maxComponent(f) <= 0.0) return vec3(0.0);
+    if (cosS <= 0.0 || dot(v.ng, ls.direction) <= 0.0) return;
+    vec3 fd, fs;
+    brdfEvalLobes(v.brdf, v.ns, v.wo, ls.direction, bumpShadowing(v, ls.direction), fd, fs);
+    if (maxComponent(fd + fs) <= 0.0) return;
     // `last` is false for every vertex when the last one also traces a BRDF ray (LAST_RAY).
     float w = ls.isDelta ? 1.0
                          : lightSampleWeight(ls.pdf, brdfPdf(v.brdf, v.ns, v.wo, ls.direction),
                                              !last);
-    if (w <= 0.0) return vec3(0.0);
+    if (w <= 0.0) return;
     COUNT_RAY(vertex == 1u ? 1 : 3);
     if (bvhOccluded(p, ls.direction, 0.0, ls.distance * kShadowShorten, alphaSeed(vertex, 0u)))
-        return vec3(0.0);
-    return f * cosS * ls.radiance * (w / ls.pdf);  // ls.pdf > 0 when sampleLight succeeds
+        return;
+    vec3 li = cosS * ls.radiance * (w / ls.pdf);  // ls.pdf > 0 when sampleLight succeeds
+    diffusePart = fd * li;
+    specularPart = fs * li;
 }
 
-// Emission found by a ray leaving vertex `depth` (already weighted): light after one reflection
-// is direct, later light indirect (clamped when clampIndirect is set).
-void addFound(inout PathResult r, int depth, vec3 e) {
-    if (depth == 0)
+// Light x reaching vertex `depth` (already MIS-weighted), seen through the path throughput
+// tD + tS (its parts through the primary vertex's diffuse and specular lobes): light after one
+// reflection is direct, later light indirect (clamped when clampIndirect is set; the split parts
+// are scaled alike).
+void addFound(inout PathResult r, int depth, vec3 tD, vec3 tS, vec3 x) {
+    vec3 e = (tD + tS) * x;
+    float k = 1.0;
+    if (depth == 0) {
         r.direct += e;
-    else
-        r.indirect += clampContribution(e);
+    } else {
+        vec3 c = clampContribution(e);
+        float m = maxComponent(e);
+        k = m > 0.0 ? maxComponent(c) / m : 1.0;  // m > 0
+        r.indirect += c;
+    }
+    r.diffuse += tD * x * k;
+    r.specular += tS * x * k;
 }
 
 PathResult tracePath(uvec2 pixel, bool haveVisibility, uvec4 vis) {
@@ -281,6 +313,13 @@ PathResult tracePath(uvec2 pixel, bool haveVisibility, uvec4 vis) {
     r.emission = vec3(0.0);
     r.albedo = vec3(0.0);
     r.hitT = 0.0;
+    r.diffuse = vec3(0.0);
+    r.specular = vec3(0.0);
+    r.diffuseAlbedo = vec3(0.0);
+    r.specularAlbedo = vec3(0.0);
+    r.roughness = 1.0;
+    r.viewZ = 0.0;
+    r.hitLobe = 0;
     // The GBuffer's eye (bits 8..15): on a Visual-Polar grid the texel's column is not a screen
     // column (seed 003 P5 §3.2); on the screen grid both agree.
     uint eye = haveVisibility ? min((vis.w >> 8) & 0xFFu, cameraEyeCount() - 1u)
@@ -326,21 +365,35 @@ PathResult tracePath(uvec2 pixel, bool haveVisibility, uvec4 vis) {
     r.albedo = v.brdf.baseColor;
     r.emission = v.emitted;
     r.direct = v.emitted;
-    vec3 throughput = vec3(1.0);
+    r.viewZ = cameraViewDepth(eye, v.position);
+#if BRDF_GGX
+    r.diffuseAlbedo = (1.0 - v.brdf.metallic) * v.brdf.baseColor;
+    r.specularAlbedo = specularAlbedo(brdfF0(v.brdf), dot(v.ns, v.wo), v.brdf.roughness);
+    r.roughness = v.brdf.roughness;
+#else
+    r.diffuseAlbedo = v.brdf.baseColor;
+#endif
+    // The path throughput split by the primary vertex's lobes (tD + tS); the primary vertex's
+    // own light is split by brdfEvalLobes in nextEvent.
+    vec3 tD = vec3(1.0), tS = vec3(0.0);
     int bounces = max(pc.maxBounces, 0);
     for (int depth = 0; depth <= bounces; ++depth) {
         uint vertex = uint(depth) + 1u;
         bool last = depth == bounces;
+        vec3 neD, neS;
 #if PATHTRACE_LAST_RAY
         // The last vertex traces a BRDF ray too, so its shadow ray is MIS-weighted as well.
-        vec3 ne = throughput * nextEvent(v, vertex, false);
+        nextEvent(v, vertex, false, neD, neS);
 #else
-        vec3 ne = throughput * nextEvent(v, vertex, last);
+        nextEvent(v, vertex, last, neD, neS);
 #endif
-        if (depth == 0)
-            r.direct += ne;
-        else
-            r.indirect += clampContribution(ne);
+        if (depth == 0) {
+            r.direct += neD + neS;
+            r.diffuse += neD;
+            r.specular += neS;
+        } else {
+            addFound(r, depth, tD, tS, neD + neS);
+        }
 #if !PATHTRACE_LAST_RAY
         if (last) break;
 #endif
@@ -348,18 +401,27 @@ PathResult tracePath(uvec2 pixel, bool haveVisibility, uvec4 vis) {
         vec3 u = vec3(rand(vertex, kDimBrdf), rand(vertex, kDimBrdf + 1u),
                       rand(vertex, kDimBrdf + 2u));
         vec3 wi;
-        if (!brdfSample(v.brdf, v.ns, v.wo, u, wi)) break;
+        bool specularLobe;
+        if (!brdfSampleLobe(v.brdf, v.ns, v.wo, u, wi, specularLobe)) break;
         if (dot(wi, v.ng) <= 0.0) break;  // below the geometric surface: would leak light
         float brdfPdfValue = brdfPdf(v.brdf, v.ns, v.wo, wi);
-        throughput *= brdfWeightScaled(v.brdf, v.ns, v.wo, wi, bumpShadowing(v, wi));
-        if (maxComponent(throughput) <= 0.0) break;
+        vec3 wD, wS;
+        brdfWeightLobes(v.brdf, v.ns, v.wo, wi, bumpShadowing(v, wi), wD, wS);
+        if (depth == 0) {
+            tD = wD;
+            tS = wS;
+            r.hitLobe = specularLobe ? 2 : 1;
+        } else {
+            tD *= wD + wS;
+            tS *= wD + wS;
+        }
+        if (maxComponent(tD + tS) <= 0.0) break;
         vec3 p = bvhOffsetRay(v.position, v.ng);
         BvhHit hit;
 #if PATHTRACE_LAST_RAY
         COUNT_RAY(last ? 4 : 2);
         if (!bvhClosestHit(p, wi, 0.0, kInfinity, alphaSeed(vertex, 1u), hit)) {
-            vec3 e = throughput * escapedRadiance(wi, brdfPdfValue);
-            addFound(r, depth, e);
+            addFound(r, depth, tD, tS, escapedRadiance(wi, brdfPdfValue));
             break;
         }
         if (depth == 0 && !last) r.hitT = hit.t;  // hit_distance: the first *indirect* ray
@@ -370,16 +432,14 @@ PathResult tracePath(uvec2 pixel, bool haveVisibility, uvec4 vis) {
             vec3 le = sceneEmission(hs.material, hs.uv, dot(hs.geometricNormal, wi) < 0.0);
             if (maxComponent(le) > 0.0) {
                 float lightPdf = sceneEmitterPdf(hit.triangle, p, hs.position);
-                vec3 e = throughput * le * brdfHitWeight(brdfPdfValue, lightPdf);
-                addFound(r, depth, e);
+                addFound(r, depth, tD, tS, le * brdfHitWeight(brdfPdfValue, lightPdf));
             }
             break;
         }
 #else
         COUNT_RAY(2);
         if (!bvhClosestHit(p, wi, 0.0, kInfinity, alphaSeed(vertex, 1u), hit)) {
-            vec3 e = throughput * escapedRadiance(wi, brdfPdfValue);
-            addFound(r, depth, e);
+            addFound(r, depth, tD, tS, escapedRadiance(wi, brdfPdfValue));
             break;
         }
         if (depth == 0) r.hitT = hit.t;
@@ -388,8 +448,7 @@ PathResult tracePath(uvec2 pixel, bool haveVisibility, uvec4 vis) {
         if (maxComponent(next.emitted) > 0.0) {
             // The light-sampling strategy could have produced this direction too (MIS).
             float lightPdf = sceneEmitterPdf(hit.triangle, p, next.position);
-            vec3 e = throughput * next.emitted * brdfHitWeight(brdfPdfValue, lightPdf);
-            addFound(r, depth, e);
+            addFound(r, depth, tD, tS, next.emitted * brdfHitWeight(brdfPdfValue, lightPdf));
         }
         v = next;
     }
@@ -412,6 +471,10 @@ void main() {
         imageStore(hit_distance, q, vec4(0.0));
         imageStore(direct, q, vec4(0.0));
         imageStore(indirect, q, vec4(0.0));
+        imageStore(diffuse, q, vec4(0.0, 0.0, 0.0, 1.0));
+        imageStore(specular, q, vec4(0.0, 0.0, 0.0, 1.0));
+        imageStore(diffuse_albedo, q, vec4(0.0));
+        imageStore(specular_albedo, q, vec4(0.0));
         return;
     }
     // A pixel the GBuffer did not trace (bit 0 clear) falls back to own primary rays.
@@ -425,6 +488,9 @@ void main() {
     vec3 sumAlbedo = vec3(0.0);
     float sumT = 0.0;
     uint hits = 0u;
+    vec3 sumDiffuse = vec3(0.0), sumSpecular = vec3(0.0);
+    vec3 sumDiffuseAlbedo = vec3(0.0), sumSpecularAlbedo = vec3(0.0);
+    vec2 sumH = vec2(0.0), lobeRays = vec2(0.0);  // per lobe: normalized hit distances, rays
     for (uint s = 0u; s < samples; ++s) {
         gSampleSeed = hashCombine(pixelSeed, s);
 #if PATHTRACE_STRATIFY_LIGHT
@@ -441,6 +507,18 @@ void main() {
         if (r.hitT > 0.0 && !isinf(r.hitT)) {
             sumT += r.hitT;
             ++hits;
+        }
+        sumDiffuse += finiteOrZero(r.diffuse);
+        sumSpecular += finiteOrZero(r.specular);
+        sumDiffuseAlbedo += finiteOrZero(r.diffuseAlbedo);
+        sumSpecularAlbedo += finiteOrZero(r.specularAlbedo);
+        if (r.hitLobe > 0 && r.viewZ > 0.0) {
+            // The lobe's own first indirect ray; a miss (hitT 0) is far (h = 1).
+            float roughness = r.hitLobe == 2 ? r.roughness : 1.0;
+            float h = normalizeHitDistance(
+                r.hitT, hitDistanceScale(camera_info.jitter.z, r.viewZ, roughness));
+            sumH[r.hitLobe - 1] += h;
+            lobeRays[r.hitLobe - 1] += 1.0;
         }
     }
 #if PATHTRACE_COUNT_RAYS
@@ -462,4 +540,14 @@ void main() {
     // rgba16f saturates at 65504: clamp so a bright pixel stays finite instead of becoming inf.
     imageStore(direct, p, vec4(min(dir, vec3(kHalfMax)), n));
     imageStore(indirect, p, vec4(min(ind, vec3(kHalfMax)), n));
+    // The split signals, each demodulated by its own albedo' (same epsilon rule), a = the mean
+    // normalized hit distance of the lobe's rays (1 = far, or no ray of that lobe here).
+    vec3 dAlb = sumDiffuseAlbedo / n, sAlb = sumSpecularAlbedo / n;
+    vec3 dSafe = mix(vec3(1.0), dAlb, greaterThan(dAlb, vec3(kAlbedoEpsilon)));
+    vec3 sSafe = mix(vec3(1.0), sAlb, greaterThan(sAlb, vec3(kAlbedoEpsilon)));
+    vec2 h = mix(vec2(1.0), sumH / max(lobeRays, vec2(1.0)), greaterThan(lobeRays, vec2(0.0)));
+    imageStore(diffuse, p, vec4(finiteOrZero(sumDiffuse / n / dSafe), h.x));  // dSafe >= 1e-3
+    imageStore(specular, p, vec4(finiteOrZero(sumSpecular / n / sSafe), h.y));
+    imageStore(diffuse_albedo, p, vec4(min(dAlb, vec3(kHalfMax)), n));
+    imageStore(specular_albedo, p, vec4(min(sAlb, vec3(kHalfMax)), n));
 }
