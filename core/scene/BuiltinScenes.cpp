@@ -167,7 +167,8 @@ const std::map<std::string, std::function<Scene()>>& registry() {
         {"cornell", &buildCornell},
         {"forest", &buildForestScene},
         {"plane", &buildPlane},
-        {"furnace", &buildFurnace}};
+        {"furnace", &buildFurnace},
+        {"glossy", &buildGlossyScene}};
     return kScenes;
 }
 

@@ -5,6 +5,8 @@
 //            identical on every run
 //   plane    a diffuse plane under a large emissive quad: one bounce, known radiance
 //   furnace  a closed box whose faces all emit Le and reflect rho: radiance Le / (1 - rho)
+//   glossy   a roughness ramp (metal and dielectric spheres, roughness 0.05..1) over a glossy
+//            floor, for the glossy/specular denoiser tests (issue 26)
 #pragma once
 #include <string>
 #include <vector>
@@ -39,9 +41,21 @@ constexpr float kFurnaceHalfSize = 1.0f;  // the box is [-1, 1]^3, normals inwar
 // bounces < 0 the infinite sum Le / (1 - rho) = 1.
 double furnaceRadiance(int bounces = -1);
 
+// builtin:glossy (BuiltinGlossy.cpp, docs/scenes.md): two rows of kGlossyColumns spheres, one
+// material per sphere, roughness kGlossyRoughness[column]; row 0 (front, z > 0) metallic, row 1
+// (back) dielectric.
+constexpr int kGlossyColumns = 6;
+constexpr float kGlossyRoughness[kGlossyColumns] = {0.05f, 0.2f, 0.4f, 0.6f, 0.8f, 1.0f};
+constexpr float kGlossySphereRadius = 0.3f;      // resting on the floor (y = 0)
+constexpr float kGlossySphereSpacing = 0.75f;    // between centres in x, centred on x = 0
+constexpr float kGlossyRowZ[2] = {0.4f, -0.4f};  // front (metal), back (dielectric)
+glm::vec3 glossySphereCenter(int row, int column);
+
 }  // namespace builtin
 
 // The forest generator (BuiltinForest.cpp).
 Scene buildForestScene();
+// The roughness ramp (BuiltinGlossy.cpp).
+Scene buildGlossyScene();
 
 }  // namespace fovea::scene
