@@ -79,8 +79,9 @@ void registerBuiltinPasses() {
         "QR fit of [1, n, w, w^2], second accumulation, remodulation; numerically guarded."));
     r.add(info<passes::RecurrentBlurPass>(
         "RecurrentBlur",
-        "ReBLUR diffuse (seed 004): stage temporal = pre-blur + accumulation 1/(1+N); stage "
-        "spatial = blur shrinking with N + post-blur (recurrent history) + stabilization."));
+        "ReBLUR (seed 004), diffuse or specular signal: stage temporal = pre-blur + "
+        "accumulation 1/(1+N); stage spatial = blur shrinking with N + post-blur (recurrent "
+        "history) + stabilization."));
     r.add(info<passes::HistoryFixPass>(
         "HistoryFix",
         "Seed 004: rebuild pixels with few accumulated frames from a mip pyramid (or NRD's "

@@ -82,6 +82,14 @@ void HistoryFixPass::reflect(graph::Reflection& r) const {
     r.input("normal").optional().floatOnly().sameAs("color").doc(
         "optional: GBuffer's shading normal; coarse texels and taps are weighted by the angle to "
         "it (normalAngle)");
+    r.input("roughness")
+        .optional()
+        .floatOnly()
+        .sameAs("color")
+        .doc(
+            "optional, specular signals: GBuffer roughness_metallic; the mips level is multiplied "
+            "by the pixel's linear roughness (seed 004: mip level = F(frames, roughness)), so a "
+            "mirror is not rebuilt from coarse data");
     r.output("result", rgba32)
         .sameAs("color")
         .doc("colour with few-frame pixels rebuilt; a = color.a");
@@ -176,7 +184,8 @@ void HistoryFixPass::execute(graph::ExecuteContext& ctx) {
         .set("useEmission", useEmission)
         .set("useNormal", useNormal)
         .set("cosNormal", std::cos(glm::radians(mNormalAngle)))
-        .set("clampToNeighbours", int(mClampToNeighbours));
+        .set("clampToNeighbours", int(mClampToNeighbours))
+        .set("useRoughness", int(ctx.connected("roughness")));
     mFix->dispatch(cmd, out.width(), out.height());
 }
 

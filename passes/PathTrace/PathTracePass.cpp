@@ -115,12 +115,23 @@ void PathTracePass::reflect(graph::Reflection& r) const {
         .sameAs("visibility")
         .doc(
             "light leaving through the primary vertex's diffuse lobe / diffuse_albedo' (emission "
-            "excluded); a = normalized hit distance of the diffuse rays (1 = far or none)");
+            "excluded; albedo' as for demodulated); a = samples");
     r.output("specular", vk::Format::eR32G32B32A32Sfloat)
         .sameAs("visibility")
         .doc(
-            "light leaving through the specular (GGX) lobe / specular_albedo'; a = normalized "
-            "hit distance of the specular rays (1 = far or none); 0 with brdf = lambert");
+            "light leaving through the specular (GGX) lobe / specular_albedo'; 0 with brdf = "
+            "lambert; a = samples");
+    r.output("diffuse_hit", vk::Format::eR16Sfloat)
+        .sameAs("visibility")
+        .doc(
+            "mean normalized hit distance saturate(t / maxHitT) of the diffuse-lobe first "
+            "indirect rays (shaders/common/hit_distance.glsl); 1 = far or missed, -1 = no "
+            "diffuse ray here (at 1 spp a pixel traces one lobe)");
+    r.output("specular_hit", vk::Format::eR16Sfloat)
+        .sameAs("visibility")
+        .doc(
+            "the same for the specular-lobe rays, maxHitT growing for smooth lobes (x20 at "
+            "roughness 0)");
     r.output("diffuse_albedo", vk::Format::eR16G16B16A16Sfloat)
         .sameAs("visibility")
         .doc("(1 - metallic) baseColor of the primary vertex (lambert: baseColor); a = samples");

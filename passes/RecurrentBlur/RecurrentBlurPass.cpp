@@ -21,6 +21,13 @@ void RecurrentBlurPass::params(graph::ParamVisitor& v) {
           "post-blur (the recurrent history) + temporal stabilization. A ReBLUR graph uses one "
           "node of each with HistoryFix between them (docs/passes/RecurrentBlur.md)",
           {"temporal", "spatial"});
+    v.add("signal", mSignal, "diffuse",
+          "diffuse = the talk's diffuse denoiser; specular = its specular one (seed 004 "
+          "\"Cooking specular denoiser\", issue 26): accumulation capped by roughness, NoV and "
+          "parallax, a world-space kernel along the GGX dominant direction, radius x roughness "
+          "curve x lerp(K roughness, 1, f), lobe-angle normal weight and roughness weight. "
+          "Needs the `roughness` input",
+          {"diffuse", "specular"});
     v.add("maxAccumulatedFrames", mMaxAccumulatedFrames, 30,
           "cap of the frame count N; the new frame's weight is 1/(1+N), so 1/31 at the cap "
           "(seed 004: accumulation speed 1/(1+N); NRD maxAccumulatedFrameNum)",
@@ -63,6 +70,9 @@ void RecurrentBlurPass::params(graph::ParamVisitor& v) {
           "talk's plane distance alone keeps a tap of the floor or wall that lies in the plane "
           "of a box's side face, and a revealed face inherits their colour); -1 = off",
           {-1.0, 1.0});
+    v.add("hitNormalized", mHitNormalized, false,
+          "temporal: hit_distance already holds saturate(t / maxHitT) (PathTrace.diffuse_hit / "
+          "specular_hit, shaders/common/hit_distance.glsl) instead of a distance t");
     v.add("minHitDistanceWeight", mMinHitDistanceWeight, 0.1f,
           "blur: floor of the hit-distance weight (NRD 0.1)", {0.0, 1.0});
     v.add("fireflySuppression", mFireflySuppression, true,
@@ -77,6 +87,34 @@ void RecurrentBlurPass::params(graph::ParamVisitor& v) {
     v.add("antilagSensitivity", mAntilagSensitivity, 3.0f,
           "spatial: A = 1/(1 + sensitivity*d*N), d = relative distance outside the band",
           {0.0, 1000.0});
+    v.add("specAccumBasePower", mSpecAccumBasePower, 0.66f,
+          "specular, temporal: SPEC_ACCUM_BASE_POWER of GetMaxAllowedAccumulatedFrameNum (seed "
+          "004 slide \"Specular accumulation using surface motion\"): N <= maxAccumulatedFrames "
+          "x roughness^(power (1 + parallax x sensitivity)); larger = less accumulation. NRD "
+          "used 0.66 before its virtual-motion reprojection and 0.5 with it; we reproject by "
+          "surface motion only. 0 = no cap (naive surface-motion accumulation, the talk's "
+          "\"doesn't work\" baseline)",
+          {0.0, 16.0});
+    v.add("specAccumCurve", mSpecAccumCurve, 1.0f,
+          "specular, temporal: SPEC_ACCUM_CURVE, exponent of saturate(1 - NoV) in the "
+          "sensitivity to parallax (NRD 1; smaller = less accumulation at grazing angles)",
+          {0.01, 16.0});
+    v.add("virtualMotion", mVirtualMotion, true,
+          "specular, temporal: also reproject the reflected image (the virtual point hitDist "
+          "behind the surface along the view ray, projected with the previous camera) and blend "
+          "it with the surface-motion history by (1 - r)(sqrt(1 - r) + r) (1 for a mirror, 0 at "
+          "roughness 1); the virtual history is not capped by parallax. Ours after NRD's "
+          "virtual-motion reprojection; the talk (seed 004) only caps surface-motion "
+          "accumulation, which leaves smooth reflections unaccumulated while the camera moves");
+    v.add("parallaxFrameRate", mParallaxFrameRate, 60.0f,
+          "specular, temporal: 1 / frameTime of the talk's parallax = |camera delta| / "
+          "(distance x frameTime), in frames per second of the camera path",
+          {1e-3, 1e4});
+    v.add("hitRadiusK", mHitRadiusK, 0.5f,
+          "specular, spatial: K of blurRadius *= lerp(K roughness, 1, hitDist / (hitDist + "
+          "viewDistance)) (seed 004 \"Using hit distance to control blur radius\": K in (0, 1), "
+          "no value given; 0.5 is ours)",
+          {0.0, 1.0});
     v.add("eyes", mEyes, 0,
           "side-by-side eyes (no tap crosses the seam); 0 = the frame camera's eye count", {0, 2});
 }
@@ -90,7 +128,9 @@ void RecurrentBlurPass::reflect(graph::Reflection& r) const {
         r.input("hit_distance")
             .floatOnly()
             .sameAs("radiance")
-            .doc("first indirect hit distance (PathTrace.hit_distance); 0 = no hit = far");
+            .doc(
+                "first indirect hit distance (PathTrace.hit_distance; 0 = no hit = far), or with "
+                "hitNormalized the normalized one (PathTrace.diffuse_hit / specular_hit)");
     } else {
         r.input("color").floatOnly().doc(
             "accumulated colour, a = N (temporal stage's accumulated, or HistoryFix's result)");
@@ -103,6 +143,11 @@ void RecurrentBlurPass::reflect(graph::Reflection& r) const {
     r.input("depth").floatOnly().sameAs(ref).doc("GBuffer linear view depth; 0 = sky");
     r.input("motion").optional().floatOnly().sameAs(ref).doc(
         "GBuffer motion (previous - current pixel); open = still camera");
+    r.input("roughness")
+        .optional()
+        .floatOnly()
+        .sameAs(ref)
+        .doc("GBuffer roughness_metallic (r = linear roughness); required by signal = specular");
     if (temporal) {
         r.input("history").optional().floatOnly().sameAs(ref).doc(
             "the recurrent history: the spatial stage's `history` through a delay-1 edge");
@@ -142,6 +187,9 @@ void RecurrentBlurPass::reflect(graph::Reflection& r) const {
 
 void RecurrentBlurPass::validate(const graph::ValidateContext& ctx) const {
     if (mMinBlurRadius > mMaxBlurRadius) ctx.fail("minBlurRadius", "must not exceed maxBlurRadius");
+    if (mSignal == "specular" && !ctx.connected("roughness"))
+        ctx.fail("signal",
+                 "signal = specular needs the 'roughness' input (GBuffer.roughness_metallic)");
     if (mStage == "temporal" && !ctx.connected("history"))
         ctx.fail("stage",
                  "the temporal stage needs its 'history' input: a delay-1 edge from the spatial "
@@ -150,9 +198,12 @@ void RecurrentBlurPass::validate(const graph::ValidateContext& ctx) const {
 
 void RecurrentBlurPass::compile(graph::CompileContext& ctx) {
     mUseMotion = ctx.connected("motion");
-    mBlur = ctx.createPipeline("recurrent_blur/blur.comp", {}, {"src", "hitSrc", "dst"});
+    const std::vector<std::pair<std::string, std::string>> defines = {
+        {"REBLUR_SPECULAR", mSignal == "specular" ? "1" : "0"}};
+    mBlur = ctx.createPipeline("recurrent_blur/blur.comp", defines, {"src", "hitSrc", "dst"});
+    mHavePreviousEyes = false;
     if (mStage == "temporal")
-        mTemporal = ctx.createPipeline("recurrent_blur/temporal.comp");
+        mTemporal = ctx.createPipeline("recurrent_blur/temporal.comp", defines);
     else
         mStabilize = ctx.createPipeline("recurrent_blur/stabilize.comp");
 }
@@ -171,7 +222,9 @@ void RecurrentBlurPass::setBlurConstants(graph::ExecuteContext& ctx, int mode, f
         .set("rotation", glm::vec2(std::cos(angle), std::sin(angle)))
         .set("writeRadius", int(mode != 2))
         .set("eyePosition0", glm::vec4(cam.eyes[0].position, 1.0f))
-        .set("eyePosition1", glm::vec4(cam.eyes[1].position, 1.0f));
+        .set("eyePosition1", glm::vec4(cam.eyes[1].position, 1.0f))
+        .set("maxFrames", float(mMaxAccumulatedFrames))
+        .set("hitRadiusK", mHitRadiusK);
 }
 
 void RecurrentBlurPass::execute(graph::ExecuteContext& ctx) {
@@ -199,6 +252,7 @@ void RecurrentBlurPass::blur(graph::ExecuteContext& ctx, const EyeLayout& e, con
     // blur's output is the next kernel's input.
     ctx.bindFields(*mBlur);
     mBlur->bind("src", ctx.image(src)).bind("hitSrc", ctx.image(hit)).bind("dst", ctx.image(dst));
+    mBlur->set("hitNormalized", int(mHitNormalized));
     mBlur->set("size", e.size).set("eyeWidth", e.eyeWidth).set("eyes", e.eyes);
     setBlurConstants(ctx, mode, maxRadius);
     mBlur->dispatch(ctx.cmd(), uint32_t(e.size.x), uint32_t(e.size.y));
@@ -230,7 +284,21 @@ void RecurrentBlurPass::executeTemporal(graph::ExecuteContext& ctx) {
         .set("cosNormal", mDisocclusionNormal)
         .set("firefly", int(mFireflySuppression))
         .set("maxBlurRadius", mMaxBlurRadius);
+    // Specular parallax: this frame's eyes against the previous frame's (w = 0: unknown).
+    const auto& cam = ctx.camera();
+    const float known = useHistory && mHavePreviousEyes ? 1.0f : 0.0f;
+    mTemporal->set("eyePosition0", glm::vec4(cam.eyes[0].position, 1.0f))
+        .set("eyePosition1", glm::vec4(cam.eyes[1].position, 1.0f))
+        .set("prevEyePosition0", glm::vec4(mPreviousEyes[0], known))
+        .set("prevEyePosition1", glm::vec4(mPreviousEyes[1], known))
+        .set("frameRate", mParallaxFrameRate)
+        .set("accumBasePower", mSpecAccumBasePower)
+        .set("accumCurve", mSpecAccumCurve)
+        .set("virtualMotion", int(mVirtualMotion));
     mTemporal->dispatch(cmd, out.width(), out.height());
+    mPreviousEyes[0] = cam.eyes[0].position;
+    mPreviousEyes[1] = cam.eyes[1].position;
+    mHavePreviousEyes = true;
 }
 
 void RecurrentBlurPass::executeSpatial(graph::ExecuteContext& ctx) {

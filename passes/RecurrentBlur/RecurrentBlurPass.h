@@ -10,6 +10,7 @@
 // Each stage keeps its private state as pass-declared history: the temporal stage its geometry
 // and frame count (`geo`), the spatial stage its stabilized luminance (`stabilized`).
 #pragma once
+#include <glm/vec3.hpp>
 #include <string>
 
 #include "core/graph/Pass.h"
@@ -24,7 +25,9 @@ public:
     void compile(graph::CompileContext& ctx) override;
     void execute(graph::ExecuteContext& ctx) override;
     bool usesCamera() const override { return true; }  // frustum size, eyes, view vector
-    std::string variant() const override { return mStage; }
+    std::string variant() const override {
+        return mStage + (mSignal == "specular" ? ",specular" : "");
+    }
 
 private:
     // The image size and its side-by-side eye split (taps never cross the seam).
@@ -42,6 +45,13 @@ private:
     void setBlurConstants(graph::ExecuteContext& ctx, int mode, float maxRadius);
 
     std::string mStage = "temporal";
+    std::string mSignal = "diffuse";
+    bool mHitNormalized = false;
+    bool mVirtualMotion = true;
+    float mSpecAccumBasePower = 0.66f;
+    float mSpecAccumCurve = 1.0f;
+    float mParallaxFrameRate = 60.0f;
+    float mHitRadiusK = 0.5f;
     int mMaxAccumulatedFrames = 30;
     int mHistoryFixFrames = 3;
     float mMaxBlurRadius = 30.0f;
@@ -61,6 +71,9 @@ private:
     int mEyes = 0;
     bool mUseMotion = false;
     std::unique_ptr<gpu::ComputePipeline> mBlur, mTemporal, mStabilize;
+    // Temporal stage, specular parallax: the eyes of the frame before (none after a compile).
+    glm::vec3 mPreviousEyes[2] = {};
+    bool mHavePreviousEyes = false;
 };
 
 }  // namespace fovea::passes

@@ -34,6 +34,7 @@ uniform sampler2D count;  // optional: the frame count is its alpha (else color.
 uniform sampler2D albedo;    // optional (useAlbedo)
 uniform sampler2D emission;  // optional (useEmission)
 uniform sampler2D normal;    // optional (useNormal)
+uniform sampler2D roughness;  // optional (useRoughness): r = linear roughness
 uniform sampler2D mip1;
 uniform sampler2D mip2;
 uniform sampler2D mip3;
@@ -62,6 +63,8 @@ layout(push_constant) uniform Params {
     int useNormal;       // 1: normal test against the texel's / tap's normal
     float cosNormal;     // cos(normalAngle)
     int clampToNeighbours;  // 1: the rebuilt value is clamped to the pixel's 3x3 range
+    int useRoughness;    // 1: specular level x roughness (seed 004 "Hierarchical history
+                         // reconstruction": mipLevel = 4 (1 - N / Nhf) roughness)
 } pc;
 
 bool demodulating() { return pc.useAlbedo != 0 || pc.useEmission != 0; }
@@ -171,7 +174,13 @@ void main() {
     if (pc.method == 0) {
         // The talk's level, shifted to this resolution; <= 0: finer than a 2x2 block, nothing to
         // rebuild from (the loop does not run and the pixel keeps its value).
-        int level = min(int(ceil(4.0 * (1.0 - n / pc.fixFrames))) + pc.levelShift, 4);  // Nhf > 0
+        // Specular (roughness connected): the talk's level x roughness, so a mirror (0) keeps
+        // its own sharp value and a rough lobe is rebuilt like a diffuse one.
+        float rough = pc.useRoughness != 0
+                          ? clamp(sanitize(texelFetch(roughness, p, 0)).r, 0.0, 1.0)
+                          : 1.0;
+        int level =
+            min(int(ceil(4.0 * (1.0 - n / pc.fixFrames) * rough)) + pc.levelShift, 4);  // Nhf > 0
         bool rebuilt = false;
         for (int l = level; l >= 1 && !rebuilt; --l) {
             vec3 v;

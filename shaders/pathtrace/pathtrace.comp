@@ -36,11 +36,14 @@ layout(r32f) uniform writeonly image2D hit_distance;
 layout(rgba16f) uniform writeonly image2D direct;
 layout(rgba16f) uniform writeonly image2D indirect;
 // The signals split by lobe at the primary vertex (issue 26, docs/passes/PathTrace.md "Diffuse and
-// specular signals"): rgb demodulated, a = normalized hit distance of the lobe's own first ray.
+// specular signals"): rgb demodulated, a = samples; *_hit = normalized hit distance of the lobe's
+// own first rays (hit_distance.glsl), -1 where no ray of that lobe was traced.
 layout(rgba32f) uniform writeonly image2D diffuse;
 layout(rgba32f) uniform writeonly image2D specular;
 layout(rgba16f) uniform writeonly image2D diffuse_albedo;
 layout(rgba16f) uniform writeonly image2D specular_albedo;
+layout(r16f) uniform writeonly image2D diffuse_hit;
+layout(r16f) uniform writeonly image2D specular_hit;
 
 #ifndef PATHTRACE_COUNT_RAYS
 #define PATHTRACE_COUNT_RAYS 0
@@ -471,8 +474,10 @@ void main() {
         imageStore(hit_distance, q, vec4(0.0));
         imageStore(direct, q, vec4(0.0));
         imageStore(indirect, q, vec4(0.0));
-        imageStore(diffuse, q, vec4(0.0, 0.0, 0.0, 1.0));
-        imageStore(specular, q, vec4(0.0, 0.0, 0.0, 1.0));
+        imageStore(diffuse, q, vec4(0.0));
+        imageStore(specular, q, vec4(0.0));
+        imageStore(diffuse_hit, q, vec4(-1.0));
+        imageStore(specular_hit, q, vec4(-1.0));
         imageStore(diffuse_albedo, q, vec4(0.0));
         imageStore(specular_albedo, q, vec4(0.0));
         return;
@@ -540,14 +545,17 @@ void main() {
     // rgba16f saturates at 65504: clamp so a bright pixel stays finite instead of becoming inf.
     imageStore(direct, p, vec4(min(dir, vec3(kHalfMax)), n));
     imageStore(indirect, p, vec4(min(ind, vec3(kHalfMax)), n));
-    // The split signals, each demodulated by its own albedo' (same epsilon rule), a = the mean
-    // normalized hit distance of the lobe's rays (1 = far, or no ray of that lobe here).
+    // The split signals, each demodulated by its own albedo' (same epsilon rule); *_hit = the
+    // mean normalized hit distance of the lobe's rays (1 = far or missed, -1 = no ray).
     vec3 dAlb = sumDiffuseAlbedo / n, sAlb = sumSpecularAlbedo / n;
     vec3 dSafe = mix(vec3(1.0), dAlb, greaterThan(dAlb, vec3(kAlbedoEpsilon)));
     vec3 sSafe = mix(vec3(1.0), sAlb, greaterThan(sAlb, vec3(kAlbedoEpsilon)));
-    vec2 h = mix(vec2(1.0), sumH / max(lobeRays, vec2(1.0)), greaterThan(lobeRays, vec2(0.0)));
-    imageStore(diffuse, p, vec4(finiteOrZero(sumDiffuse / n / dSafe), h.x));  // dSafe >= 1e-3
-    imageStore(specular, p, vec4(finiteOrZero(sumSpecular / n / sSafe), h.y));
+    // -1: no ray of that lobe here ("no data": at 1 spp most pixels trace one lobe only).
+    vec2 h = mix(vec2(-1.0), sumH / max(lobeRays, vec2(1.0)), greaterThan(lobeRays, vec2(0.0)));
+    imageStore(diffuse, p, vec4(finiteOrZero(sumDiffuse / n / dSafe), n));  // dSafe >= 1e-3
+    imageStore(specular, p, vec4(finiteOrZero(sumSpecular / n / sSafe), n));
+    imageStore(diffuse_hit, p, vec4(h.x));
+    imageStore(specular_hit, p, vec4(h.y));
     imageStore(diffuse_albedo, p, vec4(min(dAlb, vec3(kHalfMax)), n));
     imageStore(specular_albedo, p, vec4(min(sAlb, vec3(kHalfMax)), n));
 }

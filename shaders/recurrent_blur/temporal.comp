@@ -13,9 +13,21 @@
 // BMFR's normal test): the plane distance alone accepts a floor or wall point lying in the plane
 // of a box's side face, so a face revealed by the camera inherited the floor's colour (issue 13,
 // error by history age on the glTF Cornell box).
+// REBLUR_SPECULAR (signal = specular, seed 004 "Specular accumulation using surface motion"):
+// the history is still found through the surface motion, but the frame count is capped by
+// reblurMaxAccumulatedFrames(roughness, NoV, parallax): "we don't touch MVs, we adapt the
+// accumulation speed". Parallax = |previous eye - eye| / distance to the point x frame rate (the
+// talk's length(movementDelta) / (distToPoint * frameTime)).
 #extension GL_GOOGLE_include_directive : require
+#include "common/camera.glsl"
 #include "common/color.glsl"
+#include "common/hit_distance.glsl"
 #include "recurrent_blur/reblur_common.glsl"
+#include "recurrent_blur/reblur_specular.glsl"
+
+#ifndef REBLUR_SPECULAR
+#define REBLUR_SPECULAR 0
+#endif
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -27,6 +39,9 @@ uniform sampler2D normal;
 uniform sampler2D position;
 uniform sampler2D depth;
 uniform sampler2D motion;
+#if REBLUR_SPECULAR  // declared only where used: an unused sampler would sit at binding 0
+uniform sampler2D roughness;  // GBuffer roughness_metallic (r = linear roughness)
+#endif
 layout(rgba32f) uniform writeonly image2D accumulated;  // rgb accumulated, a = N
 layout(r32f) uniform writeonly image2D hit;             // accumulated normalized hit distance
 layout(rgba32f) uniform writeonly image2D geo;          // xyz position, w = N (-1: no surface)
@@ -44,11 +59,58 @@ layout(push_constant) uniform Params {
     int firefly;         // 1: firefly suppression on
     float maxBlurRadius; // strength of the firefly suppressor grows with it (specs §2)
     float cosNormal;     // disocclusion: minimum cosine between the tap's normal and ours; -1 off
+    // Specular: eye positions of this and the previous frame (w = 1 when the previous is known).
+    vec4 eyePosition0;
+    vec4 eyePosition1;
+    vec4 prevEyePosition0;
+    vec4 prevEyePosition1;
+    float frameRate;     // 1 / the talk's frameTime
+    float accumBasePower;  // SPEC_ACCUM_BASE_POWER
+    float accumCurve;      // SPEC_ACCUM_CURVE
+    int virtualMotion;     // 1: also reproject the reflected image (specular)
 } pc;
 
 vec3 unitNormal(vec4 n) {
     float l = length(n.xyz);
     return l > 1e-8 && !isnan(l) && !isinf(l) ? n.xyz / l : vec3(0.0, 0.0, 1.0);
+}
+
+// The recurrent history at previous-frame position f (pixel centre minus 0.5): the 2x2 bilinear
+// footprint, each tap kept only when the previous surface lies on this pixel's plane and (unless
+// off) has a similar normal; h = the renormalized average, n = the taps' count + 1, capped.
+// False when no tap survives.
+bool reprojectHistory(vec2 f, vec3 x, vec3 nrm, float frustum, ivec2 lo, ivec2 hi, out vec4 h,
+                      out float n) {
+    h = vec4(0.0);
+    n = 0.0;
+    ivec2 i0 = ivec2(floor(clamp(f, vec2(-1e6), vec2(1e6))));
+    vec2 t = f - vec2(i0);
+    vec4 sum = vec4(0.0);
+    float nsum = 0.0, wsum = 0.0;
+    for (int k = 0; k < 4; ++k) {
+        ivec2 o = ivec2(k & 1, k >> 1);
+        ivec2 q = i0 + o;
+        // In the same eye (never across the seam) and on screen.
+        if (any(lessThan(q, lo)) || any(greaterThan(q, hi))) continue;
+        float wb = (o.x == 1 ? t.x : 1.0 - t.x) * (o.y == 1 ? t.y : 1.0 - t.y);
+        vec4 g = texelFetch(prev_geo, q, 0);
+        if (!(g.w >= 0.0)) continue;  // no surface there last frame (or NaN)
+        // Plane distance of the previous surface to this pixel's plane.
+        if (!(abs(dot(nrm, g.xyz - x)) <= pc.threshold * frustum)) continue;
+        // Normal test (ours): a zero normal (no surface) or NaN fails it unless it is off.
+        if (pc.cosNormal > -1.0 &&
+            !(dot(nrm, texelFetch(prev_geonormal, q, 0).xyz) >= pc.cosNormal))
+            continue;
+        float w = wb;
+        if (!(w > 0.0)) continue;
+        sum += w * sanitize(texelFetch(history, q, 0));
+        nsum += w * min(g.w, pc.maxFrames);
+        wsum += w;
+    }
+    if (!(wsum > 1e-6)) return false;  // a footprint that barely touches a valid tap
+    h = sum / wsum;
+    n = min(nsum / wsum + 1.0, pc.maxFrames);
+    return true;
 }
 
 void main() {
@@ -76,34 +138,46 @@ void main() {
     if (pc.useHistory != 0) {
         vec2 mv = pc.useMotion != 0 ? texelFetch(motion, p, 0).xy : vec2(0.0);
         if (any(isnan(mv)) || any(isinf(mv))) mv = vec2(1e9);  // off-screen: no history
-        vec2 f = vec2(p) + mv;  // previous position of the pixel centre, minus 0.5
-        ivec2 i0 = ivec2(floor(f));
-        vec2 t = f - vec2(i0);
-        vec4 sum = vec4(0.0);
-        float nsum = 0.0, wsum = 0.0;
-        for (int k = 0; k < 4; ++k) {
-            ivec2 o = ivec2(k & 1, k >> 1);
-            ivec2 q = i0 + o;
-            // In the same eye (never across the seam) and on screen.
-            if (any(lessThan(q, lo)) || any(greaterThan(q, hi))) continue;
-            float wb = (o.x == 1 ? t.x : 1.0 - t.x) * (o.y == 1 ? t.y : 1.0 - t.y);
-            vec4 g = texelFetch(prev_geo, q, 0);
-            if (!(g.w >= 0.0)) continue;  // no surface there last frame (or NaN)
-            // Plane distance of the previous surface to this pixel's plane.
-            if (!(abs(dot(nrm, g.xyz - x)) <= pc.threshold * frustum)) continue;
-            // Normal test (ours): a zero normal (no surface) or NaN fails it unless it is off.
-            if (pc.cosNormal > -1.0 &&
-                !(dot(nrm, texelFetch(prev_geonormal, q, 0).xyz) >= pc.cosNormal))
-                continue;
-            float w = wb;
-            if (!(w > 0.0)) continue;
-            sum += w * sanitize(texelFetch(history, q, 0));
-            nsum += w * min(g.w, pc.maxFrames);
-            wsum += w;
+        // Previous position of the pixel centre, minus 0.5.
+        bool surface = reprojectHistory(vec2(p) + mv, x, nrm, frustum, lo, hi, h, n);
+#if REBLUR_SPECULAR
+        uint eye = uint(min(p.x / pc.eyeWidth, pc.eyes - 1));
+        vec4 e = eye == 0u ? pc.eyePosition0 : pc.eyePosition1;
+        vec4 ePrev = eye == 0u ? pc.prevEyePosition0 : pc.prevEyePosition1;
+        vec3 toEye = e.xyz - x;
+        float dist = length(toEye);
+        float parallax = ePrev.w > 0.0 && dist > 0.0
+                             ? length(e.xyz - ePrev.xyz) / dist * pc.frameRate  // dist > 0
+                             : 0.0;
+        float nov = dist > 0.0 ? abs(dot(nrm, toEye / dist)) : 1.0;
+        float r = clamp(sanitize(texelFetch(roughness, p, 0)).r, 0.0, 1.0);
+        // Surface-motion history: capped by GetMaxAllowedAccumulatedFrameNum.
+        if (surface)
+            n = min(n, reblurMaxAccumulatedFrames(r, nov, parallax, pc.maxFrames,
+                                                  pc.accumBasePower, pc.accumCurve));
+        // Virtual motion (ours after NRD; the talk reprojects by surface motion only): the
+        // reflected image of a planar mirror lies hitDist behind the surface along the view
+        // ray; where it was last frame is where its history is. Weighted by how mirror-like
+        // the lobe is (the dominant direction's factor f: 1 mirror, 0 at roughness 1).
+        if (pc.virtualMotion != 0 && dist > 0.0) {
+            float hitDist = denormalizeHitDistance(c.a, hitDistanceScale(pc.tanHalfFov, z, r));
+            vec3 xv = x - toEye / dist * hitDist;  // dist > 0
+            vec2 pv;
+            vec4 hv;
+            float nv;
+            if (cameraPreviousPixel(eye, xv, pv) &&
+                reprojectHistory(pv - 0.5, x, nrm, frustum, lo, hi, hv, nv)) {
+                float f = (1.0 - r) * (sqrt(1.0 - r) + r);  // 1 - r >= 0
+                float amount = surface ? f : 1.0;
+                h = mix(h, hv, amount);
+                n = mix(n, nv, amount);
+                surface = true;
+            }
         }
-        if (wsum > 1e-6) {  // 1e-6: a footprint that barely touches a valid tap is not history
-            h = sum / wsum;
-            n = min(nsum / wsum + 1.0, pc.maxFrames);
+#endif
+        if (!surface) {  // no usable history: the frame alone
+            h = c;
+            n = 0.0;
         }
     }
     float a = 1.0 / (1.0 + n);  // the talk's linear accumulation speed

@@ -40,7 +40,8 @@ protected:
             params +
             R"( } ], "edges": [ { "from": "gb.visibility", "to": "pt.visibility" } ],)"
             R"( "outputs": [ "pt.radiance", "pt.diffuse", "pt.specular", "pt.diffuse_albedo",)"
-            R"( "pt.specular_albedo", "pt.demodulated", "gb.emission" ] })";
+            R"( "pt.specular_albedo", "pt.demodulated", "pt.diffuse_hit", "pt.specular_hit",)"
+            R"( "gb.emission" ] })";
         auto g = test::buildSceneGraph(cornell(), text, "split", 7, kSize, kSize);
         g->setCamera(
             scene::makeFrameCamera(cornell().camera, kSize, kSize, {}, 0, nullptr, nullptr));
@@ -83,20 +84,27 @@ TEST_F(PathTraceSplitTest, RemodulatedSignalsAddUpToRadiance) {
 TEST_F(PathTraceSplitTest, LambertDiffuseIsTheDemodulatedSignalAndHitDistancesAreNormalized) {
     auto g = render(R"({ "spp": 1, "maxBounces": 1 })");
     const auto dif = px(*g, "pt.diffuse"), dem = px(*g, "pt.demodulated"),
-               spe = px(*g, "pt.specular"), sa = px(*g, "pt.specular_albedo");
-    size_t differ = 0, near = 0;
+               spe = px(*g, "pt.specular"), sa = px(*g, "pt.specular_albedo"),
+               dh = px(*g, "pt.diffuse_hit"), sh = px(*g, "pt.specular_hit");
+    size_t differ = 0, near = 0, noData = 0;
     for (size_t i = 0; i < dif.size(); i += 4) {
-        for (int c = 0; c < 3; ++c) {
+        for (int c = 0; c < 4; ++c) {  // alpha too: samples
             differ += !(std::fabs(dif[i + c] - dem[i + c]) <= 1e-5f * (1.0f + dem[i + c]));
+            if (c == 3) continue;  // samples
             EXPECT_EQ(spe[i + c], 0.0f);
             EXPECT_EQ(sa[i + c], 0.0f);
         }
-        EXPECT_GE(dif[i + 3], 0.0f);
-        EXPECT_LE(dif[i + 3], 1.0f);
-        EXPECT_EQ(spe[i + 3], 1.0f) << "no specular ray: far";
-        near += dif[i + 3] < 1.0f;
+        EXPECT_EQ(sh[i], -1.0f) << "no specular ray: no data";
+        if (dh[i] == -1.0f) {  // sky (no primary hit): no ray
+            ++noData;
+            continue;
+        }
+        EXPECT_GE(dh[i], 0.0f);
+        EXPECT_LE(dh[i], 1.0f);
+        near += dh[i] < 1.0f;
     }
     EXPECT_EQ(differ, 0u) << "with Lambert the diffuse signal is PathTrace.demodulated";
+    EXPECT_LT(noData, dif.size() / 4 / 10) << "Lambert: every surface pixel traces a diffuse ray";
     // Inside the box most bounce rays hit a wall closer than the view's frustum size.
     EXPECT_GT(near, dif.size() / 4 / 2);
 }
