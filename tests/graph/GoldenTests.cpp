@@ -184,6 +184,30 @@ TEST_F(GoldenTest, ReBLUR) {
     EXPECT_TRUE(fovea::test::goldenMatches(ctx(), spec));
 }
 
+// Issue 26: the diffuse/specular split on builtin:glossy (GGX), four still frames at 64x64.
+GoldenSpec glossyGolden(const std::string& name, const std::string& graph) {
+    GoldenSpec spec = golden(name, graph);
+    spec.scene = "builtin:glossy";
+    spec.width = spec.height = 64;
+    spec.frames = 4;
+    return spec;
+}
+
+TEST_F(GoldenTest, ReBLURDiffuseSpecular) {
+    // graphs/reblur_diffuse_specular.json: PathTrace's split, one ReBLUR chain per signal (the
+    // specular one with signal = specular, HistoryFix x roughness), two Remodulates, Combine.
+    GoldenSpec spec =
+        glossyGolden("reblur_diffuse_specular", "graphs/reblur_diffuse_specular.json");
+    spec.params = {{"hfd", {{"referenceHeight", 256}}}, {"hfs", {{"referenceHeight", 256}}}};
+    EXPECT_TRUE(fovea::test::goldenMatches(ctx(), spec));
+}
+
+TEST_F(GoldenTest, SVGFDiffuseSpecular) {
+    // graphs/svgf_diffuse_specular.json: one SVGF per signal, each remodulating with its albedo.
+    EXPECT_TRUE(fovea::test::goldenMatches(
+        ctx(), glossyGolden("svgf_diffuse_specular", "graphs/svgf_diffuse_specular.json")));
+}
+
 TEST_F(GoldenTest, BMFRHistoryFix) {
     // graphs/bmfr_historyfix.json: HistoryFix after BMFR (count from bmfr.accumulated).
     GoldenSpec spec = cornellGolden("bmfr_historyfix", "graphs/bmfr_historyfix.json", false);

@@ -30,6 +30,7 @@ inline const graph::PassRegistry& reblurRegistry() {
                                                {"position", vk::Format::eR32G32B32A32Sfloat},
                                                {"depth", vk::Format::eR32Sfloat},
                                                {"motion", vk::Format::eR16G16Sfloat},
+                                               {"roughness", vk::Format::eR16G16Sfloat},
                                                {"color", vk::Format::eR32G32B32A32Sfloat},
                                                {"albedo", vk::Format::eR32G32B32A32Sfloat},
                                                {"emission", vk::Format::eR32G32B32A32Sfloat}};
@@ -95,10 +96,15 @@ public:
               const std::string& fixParams = "{}")
         : mGpu(gpu), mGraph(gpu, reblurRegistry()), mW(w), mH(h) {
         std::string edges;
-        for (const char* f : {"normal", "position", "depth", "motion"}) {
+        // signal = specular (issue 26) also reads roughness (setRoughness), HistoryFix too.
+        const bool specular = temporalParams.find("specular") != std::string::npos;
+        for (const char* f : {"normal", "position", "depth", "motion", "roughness"}) {
+            if (std::string(f) == "roughness" && !specular) continue;
             edges += std::string(R"({ "from": "feed.)") + f + R"(", "to": "rbt.)" + f + R"(" }, )";
             edges += std::string(R"({ "from": "feed.)") + f + R"(", "to": "rbs.)" + f + R"(" }, )";
         }
+        if (specular && historyFix)
+            edges += R"({ "from": "feed.roughness", "to": "hf.roughness" }, )";
         edges += R"({ "from": "feed.radiance", "to": "rbt.radiance" },
                     { "from": "feed.hit_distance", "to": "rbt.hit_distance" },
                     { "from": "rbt.hit", "to": "rbs.hit" },
@@ -137,6 +143,12 @@ public:
         target("feed.depth").uploadRGBA32F(mGpu, g.depth);
     }
     void setMotion(const Image& m) { target("feed.motion").uploadRGBA32F(mGpu, m); }
+    // Linear roughness everywhere (signal = specular).
+    void setRoughness(float r) {
+        Image img(size_t(mW) * mH * 4, 0.0f);
+        for (size_t i = 0; i < img.size(); i += 4) img[i] = r;
+        target("feed.roughness").uploadRGBA32F(mGpu, img);
+    }
     // hit: one float per pixel (0 = no indirect hit).
     void frame(const Image& radiance, const std::vector<float>& hit) {
         target("feed.radiance").uploadRGBA32F(mGpu, radiance);
