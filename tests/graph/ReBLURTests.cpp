@@ -223,13 +223,26 @@ TEST_F(ReBLURTest, RadiusScalesWithReferenceHeight) {
     }
 }
 
-// NaN/Inf radiance, a NaN hit distance and a NaN normal on one frame: every output of every
-// stage stays finite in that frame and all later ones, and the image returns to the clean value
-// (the feedback loop would otherwise keep a NaN forever).
-TEST_F(ReBLURTest, NaNAndInfNeverBecomePermanent) {
+// Both signals (issue 26: RecurrentBlur{signal: specular} with roughness fed) for the robustness
+// tests below: NaN/Inf and the stereo seam.
+class ReBLURBothSignals : public GpuTest, public ::testing::WithParamInterface<const char*> {
+protected:
+    // {"signal": <param>, extra...}
+    static std::string withSignal(const std::string& extra = "") {
+        return std::string(R"({ "signal": ")") + GetParam() + "\"" + extra + " }";
+    }
+    static bool specular() { return std::string(GetParam()) == "specular"; }
+};
+INSTANTIATE_TEST_SUITE_P(Signal, ReBLURBothSignals, ::testing::Values("diffuse", "specular"));
+
+// NaN/Inf radiance, a NaN/Inf hit distance, a NaN normal and an infinite position on one frame:
+// every output of every stage stays finite in that frame and all later ones, and the image
+// returns to the clean value (the feedback loop would otherwise keep a NaN forever).
+TEST_P(ReBLURBothSignals, NaNAndInfNeverBecomePermanent) {
     const int w = 16, h = 16;
-    ReblurRig rig(ctx(), w, h, "{}", "{}", true);
+    ReblurRig rig(ctx(), w, h, withSignal(), withSignal(), true);
     rig.init();
+    if (specular()) rig.setRoughness(0.5f);
     const test::Geometry clean = test::facingPlane(w, h, 5.0f);
     rig.setGeometry(clean);
     const Image in = test::constantImage(w, h, 0.2f, 0.4f, 0.6f);
@@ -241,9 +254,11 @@ TEST_F(ReBLURTest, NaNAndInfNeverBecomePermanent) {
     for (int k = 0; k < 4; ++k) {
         bad[(size_t(5 + k) * w + 7) * 4 + k % 3] = k % 2 ? inf : nan;
         badGeo.normal[(size_t(9) * w + 3 + k) * 4] = nan;
+        badGeo.position[(size_t(2) * w + 3 + k) * 4 + 1] = inf;
     }
     std::vector<float> hit(size_t(w) * h, 1.0f);
     hit[size_t(8) * w + 8] = nan;
+    hit[size_t(8) * w + 9] = inf;
     rig.setGeometry(badGeo);
     rig.frame(bad, hit);
     rig.setGeometry(clean);
@@ -278,13 +293,15 @@ TEST_F(ReBLURTest, EveryKernelWritesEveryPixel) {
 }
 
 // Two eyes side by side: the left eye sees 0, the right eye 1 on one continuous plane. With the
-// full blur (radius 30, much wider than an eye) and a sideways motion that would fetch history
-// from the other eye, no value crosses the seam: the left eye stays exactly 0.
-TEST_F(ReBLURTest, TapsNeverCrossTheStereoSeam) {
+// full blur (radius 30, much wider than an eye; specular: roughness 1, the widest world-space
+// kernel) and a sideways motion that would fetch history from the other eye, no value crosses
+// the seam: the left eye stays exactly 0.
+TEST_P(ReBLURBothSignals, TapsNeverCrossTheStereoSeam) {
     const int w = 32, h = 16;
-    const char* eyes = R"({ "eyes": 2 })";
-    ReblurRig rig(ctx(), w, h, eyes, eyes, true, eyes);
+    const std::string eyes = withSignal(R"(, "eyes": 2)");
+    ReblurRig rig(ctx(), w, h, eyes, eyes, true, R"({ "eyes": 2 })");
     rig.init();
+    if (specular()) rig.setRoughness(1.0f);
     rig.setGeometry(test::facingPlane(w, h, 5.0f));
     Image in = test::constantImage(w, h, 0.0f, 0.0f, 0.0f);
     for (int y = 0; y < h; ++y)
