@@ -77,10 +77,10 @@ vec3 unitNormal(vec4 n) {
 
 // The recurrent history at previous-frame position f (pixel centre minus 0.5): the 2x2 bilinear
 // footprint, each tap kept only when the previous surface lies on this pixel's plane and (unless
-// off) has a similar normal; h = the renormalized average, n = the taps' count + 1, capped.
-// False when no tap survives.
-bool reprojectHistory(vec2 f, vec3 x, vec3 nrm, float frustum, ivec2 lo, ivec2 hi, out vec4 h,
-                      out float n) {
+// off: cosNormal -1) has a normal within acos(cosNormal); h = the renormalized average, n = the
+// taps' count + 1, capped. False when no tap survives.
+bool reprojectHistory(vec2 f, vec3 x, vec3 nrm, float frustum, float cosNormal, ivec2 lo,
+                      ivec2 hi, out vec4 h, out float n) {
     h = vec4(0.0);
     n = 0.0;
     ivec2 i0 = ivec2(floor(clamp(f, vec2(-1e6), vec2(1e6))));
@@ -98,8 +98,7 @@ bool reprojectHistory(vec2 f, vec3 x, vec3 nrm, float frustum, ivec2 lo, ivec2 h
         // Plane distance of the previous surface to this pixel's plane.
         if (!(abs(dot(nrm, g.xyz - x)) <= pc.threshold * frustum)) continue;
         // Normal test (ours): a zero normal (no surface) or NaN fails it unless it is off.
-        if (pc.cosNormal > -1.0 &&
-            !(dot(nrm, texelFetch(prev_geonormal, q, 0).xyz) >= pc.cosNormal))
+        if (cosNormal > -1.0 && !(dot(nrm, texelFetch(prev_geonormal, q, 0).xyz) >= cosNormal))
             continue;
         float w = wb;
         if (!(w > 0.0)) continue;
@@ -139,7 +138,7 @@ void main() {
         vec2 mv = pc.useMotion != 0 ? texelFetch(motion, p, 0).xy : vec2(0.0);
         if (any(isnan(mv)) || any(isinf(mv))) mv = vec2(1e9);  // off-screen: no history
         // Previous position of the pixel centre, minus 0.5.
-        bool surface = reprojectHistory(vec2(p) + mv, x, nrm, frustum, lo, hi, h, n);
+        bool surface = reprojectHistory(vec2(p) + mv, x, nrm, frustum, pc.cosNormal, lo, hi, h, n);
 #if REBLUR_SPECULAR
         uint eye = uint(min(p.x / pc.eyeWidth, pc.eyes - 1));
         vec4 e = eye == 0u ? pc.eyePosition0 : pc.eyePosition1;
@@ -158,15 +157,20 @@ void main() {
         // Virtual motion (ours after NRD; the talk reprojects by surface motion only): the
         // reflected image of a planar mirror lies hitDist behind the surface along the view
         // ray; where it was last frame is where its history is. Weighted by how mirror-like
-        // the lobe is (the dominant direction's factor f: 1 mirror, 0 at roughness 1).
+        // the lobe is (the dominant direction's factor f: 1 mirror, 0 at roughness 1). The
+        // planar-mirror assumption holds where the surface is flat: a virtual tap must have the
+        // pixel's normal within the lobe's half angle + 2 deg (a curved mirror, whose reflection
+        // moves otherwise, falls back to the surface history).
         if (pc.virtualMotion != 0 && dist > 0.0) {
             float hitDist = denormalizeHitDistance(c.a, hitDistanceScale(pc.tanHalfFov, z, r));
             vec3 xv = x - toEye / dist * hitDist;  // dist > 0
             vec2 pv;
             vec4 hv;
             float nv;
+            float cosVirtual =
+                max(pc.cosNormal, cos(min(reblurSpecularLobeHalfAngle(r) + radians(2.0), 1.5)));
             if (cameraPreviousPixel(eye, xv, pv) &&
-                reprojectHistory(pv - 0.5, x, nrm, frustum, lo, hi, hv, nv)) {
+                reprojectHistory(pv - 0.5, x, nrm, frustum, cosVirtual, lo, hi, hv, nv)) {
                 float f = (1.0 - r) * (sqrt(1.0 - r) + r);  // 1 - r >= 0
                 float amount = surface ? f : 1.0;
                 h = mix(h, hv, amount);
