@@ -4,7 +4,6 @@
 #include <glm/vec2.hpp>
 
 #include "core/scene/Camera.h"
-#include "core/util/Error.h"
 #include "core/vk/Barriers.h"
 #include "core/vk/ComputePipeline.h"
 #include "core/vk/Resources.h"
@@ -119,14 +118,18 @@ void ATrousNHPass::reflect(graph::Reflection& r) const {
             "it and `denoised`");
 }
 
+void ATrousNHPass::validate(const graph::ValidateContext& ctx) const {
+    // In validate(), not compile(): `fovea validate` names the graph file and the JSON pointer.
+    if (ctx.connected("position") && !ctx.connected("normal") && mPositionTerm == "plane")
+        ctx.fail("positionTerm",
+                 "'plane' needs the normal input (the tangent plane is n_p's); connect `normal` "
+                 "or set positionTerm to 'distance'");
+}
+
 void ATrousNHPass::compile(graph::CompileContext& ctx) {
     mUseMask = ctx.connected("mask");
     mUseNormal = ctx.connected("normal");
     mUsePosition = ctx.connected("position");
-    if (mUsePosition && !mUseNormal && mPositionTerm == "plane")
-        throw InputError("pass '" + name() + "' (ATrousNH)", "",
-                         "positionTerm 'plane' needs the normal input (the tangent plane is "
-                         "n_p's); connect `normal` or set positionTerm to 'distance'");
     // Not enforced: M < N < P is the paper's advice (§3.4), not a validity condition.
     mVariant =
         "layers=" + std::to_string(mLayers) + ",iterations=" + std::to_string(mIterations[0]);

@@ -16,6 +16,7 @@ class ATrousNHPass : public graph::Pass {
 public:
     void params(graph::ParamVisitor& v) override;
     void reflect(graph::Reflection& r) const override;
+    void validate(const graph::ValidateContext& ctx) const override;
     void compile(graph::CompileContext& ctx) override;
     void execute(graph::ExecuteContext& ctx) override;
     std::string variant() const override { return mVariant; }
