@@ -166,7 +166,15 @@ void RenderGraph::allocate() {
         if (typeBits == 0)
             throw RuntimeError("alias group " + std::to_string(g) +
                                ": members need incompatible memory types");
-        groupBlocks[g] = std::make_shared<gpu::MemoryBlock>(mGpu, size, typeBits);
+        // Errors name the images that share the block (the largest decides its size).
+        std::string users = "the memory shared by";
+        for (size_t m : mPlan.aliasGroups[g].members) {
+            const ResourcePlan& r = mPlan.resources[m];
+            users += (m == mPlan.aliasGroups[g].members.front() ? " '" : ", '") + r.name + "' (" +
+                     std::to_string(r.width) + "x" + std::to_string(r.height) + ")";
+        }
+        groupBlocks[g] = std::make_shared<gpu::MemoryBlock>(
+            mGpu, size, typeBits, vk::MemoryPropertyFlagBits::eDeviceLocal, users);
         mBlocks.push_back(groupBlocks[g]);
         mAllocatedTransient += size;
     }

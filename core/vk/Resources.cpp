@@ -58,19 +58,72 @@ void checkImageSupport(const Context& context, const ImageDesc& desc) {
     if (desc.width > limit || desc.height > limit)
         throw RuntimeError(imageLabel(desc) + ": larger than the device limit " +
                            std::to_string(limit));
+    // The device's largest resource of this format and usage (maxResourceSize, at least 2^31):
+    // checked here so that an oversized render gets this message, not a driver error.
+    const vk::DeviceSize bytes =
+        vk::DeviceSize(desc.width) * desc.height * formatBytesPerPixel(desc.format);
+    vk::ImageFormatProperties props;
+    try {
+        props = context.physicalDevice().getImageFormatProperties(
+            desc.format, vk::ImageType::e2D, vk::ImageTiling::eOptimal, desc.usage);
+    } catch (const vk::SystemError& e) {
+        throw RuntimeError(imageLabel(desc) + ": usage " + vk::to_string(desc.usage) +
+                           " not supported on '" + context.deviceName() + "': " + e.what());
+    }
+    if (bytes > props.maxResourceSize)
+        throw RuntimeError(imageLabel(desc) + ": " + std::to_string(bytes) + " bytes (" +
+                           std::to_string(bytes >> 20) + " MiB) exceed the largest image '" +
+                           context.deviceName() + "' allows for this format (" +
+                           std::to_string(props.maxResourceSize >> 20) +
+                           " MiB); render at a smaller --size");
+}
+
+// "heap 0 of 24576 MiB on 'llvmpipe ...'": the budget a failed allocation or bind ran into.
+std::string heapOf(const Context& context, uint32_t memoryType) {
+    const auto props = context.physicalDevice().getMemoryProperties();
+    if (memoryType >= props.memoryTypeCount) return "'" + context.deviceName() + "'";
+    const uint32_t heap = props.memoryTypes[memoryType].heapIndex;
+    return "memory heap " + std::to_string(heap) + " of " +
+           std::to_string(props.memoryHeaps[heap].size >> 20) + " MiB on '" + context.deviceName() +
+           "'";
+}
+
+// Binds `resource` (an image or buffer described by `label`, `bytes` of `memoryType`) and turns a
+// driver's out-of-memory into a message that names it, its size and the device's budget (issue
+// 33: "vk::Image::bindMemory: ErrorOutOfDeviceMemory" named nothing).
+template <class Resource>
+void bindMemory(const Context& context, const Resource& resource,
+                const vk::raii::DeviceMemory& memory, vk::DeviceSize offset, vk::DeviceSize bytes,
+                uint32_t memoryType, const std::string& label) {
+    try {
+        resource.bindMemory(*memory, offset);
+    } catch (const vk::SystemError& e) {
+        throw RuntimeError("cannot place " + label + ": " + std::to_string(bytes) + " bytes (" +
+                           std::to_string(bytes >> 20) + " MiB) do not fit in " +
+                           heapOf(context, memoryType) + " (" + e.what() +
+                           "); render at a smaller --size");
+    }
 }
 
 vk::raii::DeviceMemory allocate(const Context& context, vk::DeviceSize size, uint32_t typeBits,
                                 vk::MemoryPropertyFlags props, const std::string& what,
                                 const void* pNext = nullptr) {
     uint32_t type = context.findMemoryType(typeBits, props);
+    // Larger than the whole heap: say so before the driver (and the validation layer) refuse.
+    const auto memory = context.physicalDevice().getMemoryProperties();
+    const vk::DeviceSize heapSize = memory.memoryHeaps[memory.memoryTypes[type].heapIndex].size;
+    if (size > heapSize)
+        throw RuntimeError("cannot allocate " + std::to_string(size) + " bytes (" +
+                           std::to_string(size >> 20) + " MiB) for " + what + ": larger than " +
+                           heapOf(context, type) + "; render at a smaller --size");
     try {
         return vk::raii::DeviceMemory(
             context.device(), vk::MemoryAllocateInfo{
                                   .pNext = pNext, .allocationSize = size, .memoryTypeIndex = type});
     } catch (const vk::SystemError& e) {
-        throw RuntimeError("cannot allocate " + std::to_string(size) + " bytes for " + what + ": " +
-                           e.what());
+        throw RuntimeError("cannot allocate " + std::to_string(size) + " bytes (" +
+                           std::to_string(size >> 20) + " MiB) for " + what + " in " +
+                           heapOf(context, type) + ": " + e.what());
     }
 }
 
@@ -147,10 +200,10 @@ void writeComponent(std::byte* p, Component c, float value) {
 // --- MemoryBlock -----------------------------------------------------------------------------
 
 MemoryBlock::MemoryBlock(const Context& context, vk::DeviceSize size, uint32_t memoryTypeBits,
-                         vk::MemoryPropertyFlags props)
+                         vk::MemoryPropertyFlags props, const std::string& what)
     : mSize(size) {
     mMemoryType = context.findMemoryType(memoryTypeBits, props);
-    mMemory = allocate(context, size, 1u << mMemoryType, props, "an aliased memory block");
+    mMemory = allocate(context, size, 1u << mMemoryType, props, what);
 }
 
 // --- Image -----------------------------------------------------------------------------------
@@ -179,7 +232,9 @@ Image::Image(const Context& context, const ImageDesc& desc) : mDesc(desc) {
     mMemory = allocate(context, req.size, req.memoryTypeBits,
                        vk::MemoryPropertyFlagBits::eDeviceLocal, imageLabel(mDesc));
     context.setObjectName(*mMemory, mDesc.debugName);
-    mImage.bindMemory(*mMemory, 0);
+    bindMemory(context, mImage, mMemory, 0, req.size,
+               context.findMemoryType(req.memoryTypeBits, vk::MemoryPropertyFlagBits::eDeviceLocal),
+               imageLabel(mDesc));
     mView = vk::raii::ImageView(context.device(),
                                 vk::ImageViewCreateInfo{.image = *mImage,
                                                         .viewType = vk::ImageViewType::e2D,
@@ -212,7 +267,9 @@ Image::Image(const Context& context, const ImageDesc& desc, std::shared_ptr<Memo
                            " bytes aligned to " + std::to_string(req.alignment) + " at offset " +
                            std::to_string(offset) + " of a " + std::to_string(mBlock->size()) +
                            "-byte block");
-    mImage.bindMemory(*mBlock->memory(), offset);
+    bindMemory(context, mImage, mBlock->memory(), offset, req.size, mBlock->memoryType(),
+               imageLabel(mDesc) + " (aliased, at offset " + std::to_string(offset) + " of a " +
+                   std::to_string(mBlock->size() >> 20) + " MiB block)");
     mView = vk::raii::ImageView(context.device(),
                                 vk::ImageViewCreateInfo{.image = *mImage,
                                                         .viewType = vk::ImageViewType::e2D,
@@ -338,7 +395,8 @@ Buffer::Buffer(const Context& context, vk::DeviceSize size, vk::BufferUsageFlags
     mMemory = allocate(context, req.size, req.memoryTypeBits, props, label,
                        wantAddress ? &flags : nullptr);
     context.setObjectName(*mMemory, mDebugName);
-    mBuffer.bindMemory(*mMemory, 0);
+    bindMemory(context, mBuffer, mMemory, 0, req.size,
+               context.findMemoryType(req.memoryTypeBits, props), label);
     if (hostVisible) mMapped = mMemory.mapMemory(0, VK_WHOLE_SIZE);
     if (wantAddress)
         mAddress =

@@ -18,8 +18,10 @@ class Context;
 class MemoryBlock {
 public:
     // Throws RuntimeError when no memory type in memoryTypeBits has `props`, or allocation fails.
+    // `what` names the block's users in errors (e.g. the images of an alias group).
     MemoryBlock(const Context& context, vk::DeviceSize size, uint32_t memoryTypeBits,
-                vk::MemoryPropertyFlags props = vk::MemoryPropertyFlagBits::eDeviceLocal);
+                vk::MemoryPropertyFlags props = vk::MemoryPropertyFlagBits::eDeviceLocal,
+                const std::string& what = "an aliased memory block");
     const vk::raii::DeviceMemory& memory() const { return mMemory; }
     vk::DeviceSize size() const { return mSize; }
     uint32_t memoryType() const { return mMemoryType; }

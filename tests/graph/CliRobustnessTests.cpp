@@ -410,6 +410,27 @@ TEST(CliRunRobustness, AFullDiskNamesTheImageAndLeavesNoPartOfIt) {
     EXPECT_FALSE(fs::is_symlink(out / ".partial.pt.radiance.png"));
 }
 
+TEST(CliRunRobustness, ARenderTooLargeForTheDeviceNamesImageBytesAndBudget) {
+    // Issue 33, class 5: a 16384^2 render on lavapipe (2 GiB heap) ended in
+    // "vk::Image::bindMemory: ErrorOutOfDeviceMemory" with no image and no amount, after the
+    // validation layer had complained about the allocation. Now the size is checked against the
+    // heap before Vulkan is asked: exit 1 naming the image, its bytes and the heap, no output
+    // folder left behind.
+    TempDir tmp;
+    const fs::path out = tmp / "out";
+    Result r = cli({"run", kPathTraceGraph.string(), "--size", "16384x16384", "--frames", "1",
+                    "--out", out.string(), "--quiet"});
+    if (r.code == 0) GTEST_SKIP() << "this device holds a 16384^2 render";
+    EXPECT_EQ(r.code, 1) << r.describe();
+    EXPECT_TRUE(contains(r.err, "(16384x16384)") || contains(r.err, "16384x16384 rgba"))
+        << r.describe();
+    EXPECT_TRUE(contains(r.err, "4294967296 bytes (4096 MiB)")) << r.describe();
+    EXPECT_TRUE(contains(r.err, "memory heap") || contains(r.err, "largest image")) << r.describe();
+    EXPECT_TRUE(contains(r.err, "render at a smaller --size")) << r.describe();
+    EXPECT_FALSE(contains(r.err, "validation")) << r.describe();
+    EXPECT_FALSE(fs::exists(out / "report.json"));
+}
+
 TEST(CliInputRobustness, UnusablePathsAreInputErrorsNamingTheFlag) {
     // Issue 33, class 5: a file name over 255 bytes or a loop of symbolic links used to end in
     // exit 1 "filesystem error: ..."; they are bad input: exit 2 naming the flag or the pointer.
