@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/packing.hpp>
+#include <optional>
+#include <utility>
 
 #include "core/util/Error.h"
 #include "core/vk/Barriers.h"
@@ -78,14 +80,21 @@ void checkImageSupport(const Context& context, const ImageDesc& desc) {
                            " MiB); render at a smaller --size");
 }
 
-// "heap 0 of 24576 MiB on 'llvmpipe ...'": the budget a failed allocation or bind ran into.
-std::string heapOf(const Context& context, uint32_t memoryType) {
+// The heap behind `memoryType`: its index and size (nullopt for an index the device lacks).
+std::optional<std::pair<uint32_t, vk::DeviceSize>> heapOfType(const Context& context,
+                                                              uint32_t memoryType) {
     const auto props = context.physicalDevice().getMemoryProperties();
-    if (memoryType >= props.memoryTypeCount) return "'" + context.deviceName() + "'";
+    if (memoryType >= props.memoryTypeCount) return std::nullopt;
     const uint32_t heap = props.memoryTypes[memoryType].heapIndex;
-    return "memory heap " + std::to_string(heap) + " of " +
-           std::to_string(props.memoryHeaps[heap].size >> 20) + " MiB on '" + context.deviceName() +
-           "'";
+    return std::make_pair(heap, props.memoryHeaps[heap].size);
+}
+
+// "memory heap 0 of 2048 MiB on 'llvmpipe ...'": the budget a failed allocation or bind ran into.
+std::string heapOf(const Context& context, uint32_t memoryType) {
+    const auto heap = heapOfType(context, memoryType);
+    if (!heap) return "'" + context.deviceName() + "'";
+    return "memory heap " + std::to_string(heap->first) + " of " +
+           std::to_string(heap->second >> 20) + " MiB on '" + context.deviceName() + "'";
 }
 
 // Binds `resource` (an image or buffer described by `label`, `bytes` of `memoryType`) and turns a
@@ -110,9 +119,8 @@ vk::raii::DeviceMemory allocate(const Context& context, vk::DeviceSize size, uin
                                 const void* pNext = nullptr) {
     uint32_t type = context.findMemoryType(typeBits, props);
     // Larger than the whole heap: say so before the driver (and the validation layer) refuse.
-    const auto memory = context.physicalDevice().getMemoryProperties();
-    const vk::DeviceSize heapSize = memory.memoryHeaps[memory.memoryTypes[type].heapIndex].size;
-    if (size > heapSize)
+    const auto heap = heapOfType(context, type);
+    if (heap && size > heap->second)
         throw RuntimeError("cannot allocate " + std::to_string(size) + " bytes (" +
                            std::to_string(size >> 20) + " MiB) for " + what + ": larger than " +
                            heapOf(context, type) + "; render at a smaller --size");

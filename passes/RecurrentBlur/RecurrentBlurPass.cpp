@@ -221,8 +221,6 @@ void RecurrentBlurPass::setBlurConstants(graph::ExecuteContext& ctx, int mode, f
         .set("minHitWeight", mMinHitDistanceWeight)
         .set("rotation", glm::vec2(std::cos(angle), std::sin(angle)))
         .set("writeRadius", int(mode != 2))
-        .set("eyePosition0", glm::vec4(cam.eyes[0].position, 1.0f))
-        .set("eyePosition1", glm::vec4(cam.eyes[1].position, 1.0f))
         .set("maxFrames", float(mMaxAccumulatedFrames))
         .set("hitRadiusK", mHitRadiusK);
 }
@@ -287,17 +285,15 @@ void RecurrentBlurPass::executeTemporal(graph::ExecuteContext& ctx) {
     // Specular parallax: this frame's eyes against the previous frame's (w = 0: unknown).
     const auto& cam = ctx.camera();
     const float known = useHistory && mHavePreviousEyes ? 1.0f : 0.0f;
-    mTemporal->set("eyePosition0", glm::vec4(cam.eyes[0].position, 1.0f))
-        .set("eyePosition1", glm::vec4(cam.eyes[1].position, 1.0f))
-        .set("prevEyePosition0", glm::vec4(mPreviousEyes[0], known))
+    mTemporal->set("prevEyePosition0", glm::vec4(mPreviousEyes[0], known))
         .set("prevEyePosition1", glm::vec4(mPreviousEyes[1], known))
         .set("frameRate", mParallaxFrameRate)
         .set("accumBasePower", mSpecAccumBasePower)
         .set("accumCurve", mSpecAccumCurve)
         .set("virtualMotion", int(mVirtualMotion));
     mTemporal->dispatch(cmd, out.width(), out.height());
-    mPreviousEyes[0] = cam.eyes[0].position;
-    mPreviousEyes[1] = cam.eyes[1].position;
+    // As camera_info holds them: a mono camera's eye 0 in both slots.
+    for (uint32_t e = 0; e < 2; ++e) mPreviousEyes[e] = cam.eyes[e < cam.eyeCount ? e : 0].position;
     mHavePreviousEyes = true;
 }
 

@@ -50,8 +50,6 @@ layout(push_constant) uniform Params {
     float minHitWeight;      // floor of the hit-distance weight
     vec2 rotation;           // (cos, sin) of this frame's disk rotation
     int writeRadius;         // 1: store the radius used into `radius`
-    vec4 eyePosition0;       // camera position per eye (view vector for NoV)
-    vec4 eyePosition1;
     int hitNormalized;       // mode 0: hitSrc holds the normalized h, not a distance
     float maxFrames;         // specular: N of a converged pixel (kernel skew, normal angle)
     float hitRadiusK;        // specular: K of lerp(K roughness, 1, f)
@@ -134,7 +132,7 @@ void main() {
     vec3 x = texelFetch(position, p, 0).xyz;
     vec3 nrm = unitNormal(texelFetch(normal, p, 0));
     uint eye = uint(min(p.x / pc.eyeWidth, pc.eyes - 1));
-    vec3 toEye = (eye == 0u ? pc.eyePosition0.xyz : pc.eyePosition1.xyz) - x;
+    vec3 toEye = camera_info.eyes[eye].position.xyz - x;  // view vector for NoV
     float nov = length(toEye) > 1e-12 ? abs(dot(nrm, normalize(toEye))) : 1.0;
 
     // s': the blur's accumulation-dependent scale (specs §2 "Radius"); the pre-pass uses 1/11.

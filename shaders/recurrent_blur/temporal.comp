@@ -59,9 +59,8 @@ layout(push_constant) uniform Params {
     int firefly;         // 1: firefly suppression on
     float maxBlurRadius; // strength of the firefly suppressor grows with it (specs §2)
     float cosNormal;     // disocclusion: minimum cosine between the tap's normal and ours; -1 off
-    // Specular: eye positions of this and the previous frame (w = 1 when the previous is known).
-    vec4 eyePosition0;
-    vec4 eyePosition1;
+    // Specular: the previous frame's eye positions (w = 1 when known; this frame's are
+    // camera_info's).
     vec4 prevEyePosition0;
     vec4 prevEyePosition1;
     float frameRate;     // 1 / the talk's frameTime
@@ -141,7 +140,7 @@ void main() {
         bool surface = reprojectHistory(vec2(p) + mv, x, nrm, frustum, pc.cosNormal, lo, hi, h, n);
 #if REBLUR_SPECULAR
         uint eye = uint(min(p.x / pc.eyeWidth, pc.eyes - 1));
-        vec4 e = eye == 0u ? pc.eyePosition0 : pc.eyePosition1;
+        vec4 e = vec4(camera_info.eyes[eye].position.xyz, 1.0);
         vec4 ePrev = eye == 0u ? pc.prevEyePosition0 : pc.prevEyePosition1;
         vec3 toEye = e.xyz - x;
         float dist = length(toEye);

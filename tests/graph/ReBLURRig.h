@@ -6,6 +6,7 @@
 #pragma once
 #include <cmath>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -71,6 +72,15 @@ inline Geometry facingPlanes(int w, int h, const std::vector<float>& depthPerPix
             g.depth[i * 4] = z;
         }
     return g;
+}
+
+// Uniform [0, 1) noise in rgb, a = 1, reproducible from `seed`.
+inline Image noise(int w, int h, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    Image img(size_t(w) * h * 4);
+    for (size_t i = 0; i < img.size(); ++i) img[i] = i % 4 == 3 ? 1.0f : u(rng);
+    return img;
 }
 
 inline Geometry facingPlane(int w, int h, float z) {

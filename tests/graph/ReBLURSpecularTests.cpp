@@ -6,26 +6,18 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <random>
 
 #include "tests/graph/ReBLURRig.h"
 #include "tests/unit/GpuTestFixture.h"
 
 using namespace fovea;
 using fovea::test::Image;
+using fovea::test::noise;
 using fovea::test::ReblurRig;
 
 namespace {
 
 class ReBLURSpecularTest : public GpuTest {};
-
-Image noise(int w, int h, uint32_t seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    Image img(size_t(w) * h * 4);
-    for (size_t i = 0; i < img.size(); ++i) img[i] = i % 4 == 3 ? 1.0f : u(rng);
-    return img;
-}
 
 double variance(const Image& img) {
     double s = 0, s2 = 0;

@@ -10,7 +10,6 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -21,19 +20,12 @@
 
 using namespace fovea;
 using fovea::test::Image;
+using fovea::test::noise;
 using fovea::test::ReblurRig;
 
 namespace {
 
 class ReBLURTest : public GpuTest {};
-
-Image noise(int w, int h, uint32_t seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    Image img(size_t(w) * h * 4);
-    for (size_t i = 0; i < img.size(); ++i) img[i] = i % 4 == 3 ? 1.0f : u(rng);
-    return img;
-}
 
 float at(const Image& img, int w, int x, int y, int c) {
     return img[(size_t(y) * w + x) * 4 + c];
