@@ -226,7 +226,7 @@ void VulkanWindow::recordFrame(const vk::raii::CommandBuffer& cmd, uint32_t inde
     // The acquire semaphore is waited at the transfer stage: the clear is the first write.
     gpu::imageBarrier(cmd, image, vk::ImageLayout::eUndefined, vk::ImageLayout::eTransferDstOptimal,
                       Stage::eTransfer, {}, Stage::eTransfer, Access::eTransferWrite);
-    vk::ClearColorValue background(std::array<float, 4>{0.06f, 0.06f, 0.07f, 1.0f});
+    vk::ClearColorValue background{std::array<float, 4>{0.06f, 0.06f, 0.07f, 1.0f}};
     vk::ImageSubresourceRange range{vk::ImageAspectFlagBits::eColor, 0, 1, 0, 1};
     cmd.clearColorImage(image, vk::ImageLayout::eTransferDstOptimal, background, range);
     if (preview && preview->width > 0 && preview->height > 0) {
