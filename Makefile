@@ -6,7 +6,7 @@ JOBS ?= $(shell nproc)
 # minutes of every clean build and of CI (docs/testing.md "Build time").
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG"
 
-.PHONY: deps configure build demo test sanitize sanitize-ci format clean
+.PHONY: deps configure build demo test sanitize sanitize-ci fuzz format clean
 
 deps:
 	bash scripts/install-deps.sh
@@ -31,23 +31,37 @@ test: build
 
 # Address + UndefinedBehavior sanitizers in a separate build tree.
 sanitize:
-	$(MAKE) test BUILD=build-asan CMAKE_FLAGS="-DCMAKE_BUILD_TYPE=Debug -DFOVEA_SANITIZE=ON"
+	$(MAKE) test BUILD=build-asan-full CMAKE_FLAGS="-DCMAKE_BUILD_TYPE=Debug -DFOVEA_SANITIZE=ON"
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')
 
 clean:
-	rm -rf $(BUILD) build-asan out
+	rm -rf $(BUILD) build-asan build-asan-full out
 
 # The CI's sanitizer step: ASan + UBSan over the tests that parse and check user input (graph
 # JSON, parameters, glTF incl. the malformed-file suite, camera paths, CLI arguments) and build
-# CPU data structures. GPU-heavy tests stay in `make test` (lavapipe under ASan is slow).
-# Leak detection is off: the Vulkan loader, llvmpipe's JIT and librsvg (loaded by OpenImageIO)
-# keep allocations until exit, which LeakSanitizer reports (and turns into exit code 1).
-# -O0 -g1: the cheapest build that still gives ASan reports with file:line (CI time budget); only
-# the test files of these suites are compiled (fovea_input_tests, tests/CMakeLists.txt).
+# CPU data structures, and the fuzz targets (tests/fuzz): their saved inputs replayed, then
+# libFuzzer for FUZZ_SECONDS per target. GPU-heavy tests stay in `make test` (lavapipe under ASan
+# is slow). Leak detection is off for the tests: the Vulkan loader, llvmpipe's JIT and librsvg
+# (loaded by OpenImageIO) keep allocations until exit, which LeakSanitizer reports (and turns into
+# exit code 1); the fuzz targets touch no Vulkan and run with it on (tests/fuzz/fuzz.sh).
+# clang at -O0 -g1: libFuzzer needs clang, and this tree builds in about a third of gcc's time
+# (docs/testing.md "Build time"); only the test files of these suites are compiled
+# (fovea_input_tests, tests/CMakeLists.txt).
 SANITIZE_TESTS ?= Environment|TextureView|Tangents|SceneLoad|SceneFeatures|ShaderCompiler|SceneGltfSynthetic|SceneGltfAlpha|SceneGltfLimits|SceneBuiltin|GraphDesc|Param|Compiler|BadGraph|JsonUtil|Camera|BvhBuild|LightTable|CliInput|CliValidate
+FUZZ_SECONDS ?= 20
 sanitize-ci: deps
-	cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O0 -g1" -DFOVEA_SANITIZE=ON
-	cmake --build build-asan -j $(JOBS) --target fovea_input_tests
-	cd build-asan && ASAN_OPTIONS=detect_leaks=0 ctest -R '^input\..*($(SANITIZE_TESTS))' --output-on-failure -j $(JOBS) --timeout 900
+	cmake -S . -B build-asan -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=None \
+	  -DCMAKE_CXX_FLAGS="-O0 -g1" -DFOVEA_SANITIZE=ON -DFOVEA_FUZZ=ON
+	cmake --build build-asan -j $(JOBS) --target fovea_input_tests fovea_fuzz_targets
+	cd build-asan && ASAN_OPTIONS=detect_leaks=0 ctest -R '^(input\..*($(SANITIZE_TESTS))|fuzz\.replay\.)' --output-on-failure -j $(JOBS) --timeout 900
+	bash tests/fuzz/fuzz.sh fuzz build-asan $(FUZZ_SECONDS)
+
+# Fuzz for longer (docs/testing.md "Fuzzing"): e.g. make fuzz FUZZ_SECONDS=1800 FUZZ_TARGETS=gltf
+FUZZ_TARGETS ?=
+fuzz: deps
+	cmake -S . -B build-asan -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=None \
+	  -DCMAKE_CXX_FLAGS="-O0 -g1" -DFOVEA_SANITIZE=ON -DFOVEA_FUZZ=ON
+	cmake --build build-asan -j $(JOBS) --target fovea_fuzz_targets
+	bash tests/fuzz/fuzz.sh fuzz build-asan $(FUZZ_SECONDS) $(FUZZ_TARGETS)

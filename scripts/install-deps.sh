@@ -9,6 +9,8 @@ PACKAGES=(
   libglm-dev libglfw3-dev libtinygltf-dev libstb-dev libembree-dev libopenimageio-dev openimageio-tools
   nlohmann-json3-dev libcli11-dev libimgui-dev libgtest-dev libgmock-dev libeigen3-dev
   xvfb xauth
+  # The sanitizer and fuzzing tree (make sanitize-ci, make fuzz): clang with libFuzzer's runtime
+  clang libclang-rt-14-dev
   # CC0 HDR environment maps (studiolights/world/*.exr) for the --env tests (docs/scenes.md)
   blender-data
 )
