@@ -40,7 +40,7 @@ namespace {
 
 constexpr int kTile = 8;
 
-using Inputs = test::ATrousInputs;
+using TileInputs = test::ATrousInputs;
 
 const PassRegistry& feedRegistry() {
     return test::atrousFeedRegistry();
@@ -48,7 +48,7 @@ const PassRegistry& feedRegistry() {
 
 // Concentric layers (radii 0.15 / 0.3 of the height) around an off-centre point per eye, so
 // tiles hold one, two or three layers; sparse middle and outer sampling (holes to fill).
-Inputs randomInputs(int width, int height, int eyes, uint32_t seed) {
+TileInputs randomTileInputs(int width, int height, int eyes, uint32_t seed) {
     return test::layeredATrousInputs(width, height, eyes, {0.4f, 0.45f, 0.15f, 0.3f, 0.7f, 0.3f},
                                      seed);
 }
@@ -63,7 +63,7 @@ protected:
     };
 
     // Feed -> ATrousNH (all inputs connected) with `params`, one frame.
-    static Result run(const Inputs& in, const std::string& params) {
+    static Result run(const TileInputs& in, const std::string& params) {
         auto g = test::buildFeedGraph(ctx(), feedRegistry(), "ATrousNH", "dn", params,
                                       {"color", "normal", "position", "mask"}, {"denoised"},
                                       in.width, in.height);
@@ -215,7 +215,7 @@ TEST_F(ATrousTileTest, TileDispatchEqualsFullScreenBitForBit) {
     };
     for (size_t k = 0; k < cases.size(); ++k) {
         const Case& c = cases[k];
-        const Inputs in = randomInputs(c.width, c.height, c.eyes, 11u + uint32_t(k));
+        const TileInputs in = randomTileInputs(c.width, c.height, c.eyes, 11u + uint32_t(k));
         const std::string eyes = R"("eyes": )" + std::to_string(c.eyes) + ", ";
         const Result tiles = run(in, withDispatch(eyes + c.params, "tiles"));
         const Result full = run(in, withDispatch(eyes + c.params, "full"));
@@ -235,7 +235,7 @@ TEST_F(ATrousTileTest, TileDispatchEqualsFullScreenBitForBit) {
 // Algorithm 1's literal schedule with 3 layers uses keys {0}, {0,1}, {1}, {1,2}, {2}.
 TEST_F(ATrousTileTest, TileListsEqualTheTilesHoldingTheLayers) {
     const int w = 100, h = 44;  // not multiples of 8: partial tiles at the right and bottom
-    const Inputs in = randomInputs(w, h, 2, 5u);
+    const TileInputs in = randomTileInputs(w, h, 2, 5u);
     const Result r = run(in, withDispatch(R"("eyes": 2, "layers": 3, "iterations0": 2, )"
                                           R"("iterations1": 2, "iterations2": 3, )"
                                           R"("schedule": "layers", "fill": false)",
@@ -339,7 +339,7 @@ TEST_F(ATrousTileGazeTest, ListsRebuiltWhenTheGazeMovesAndNotOtherwise) {
     constexpr int kW = 96, kH = 48;
     auto tiles = graph(kW, kH, "tiles");
     auto full = graph(kW, kH, "full");
-    const Inputs in = randomInputs(kW, kH, 2, 3u);
+    const TileInputs in = randomTileInputs(kW, kH, 2, 3u);
     for (auto* g : {tiles.get(), full.get()})
         const_cast<gpu::Image&>(g->image("feed.color")).uploadRGBA32F(ctx(), in.color);
     const glm::vec2 gazes[][2] = {{{0.5f, 0.5f}, {0.5f, 0.5f}},

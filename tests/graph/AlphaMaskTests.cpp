@@ -45,7 +45,7 @@ constexpr float kFloorAlbedo = 0.5f;
 constexpr float kSunLux = 2.0f;
 // The floor's radiance where the light reaches it: Lambert, rho / pi * E * cos 0.
 const double kLitFloor = kFloorAlbedo / std::numbers::pi * kSunLux;
-constexpr uint32_t kSize = 32;
+constexpr uint32_t kAlphaSize = 32;
 
 struct Card {
     scene::AlphaMode mode = scene::AlphaMode::Opaque;
@@ -158,11 +158,11 @@ protected:
                           R"(], "outputs": [ "pt.radiance", "gb.material" ] })"
                     : R"({ "version": 1, "name": "alpha", "passes": [ )" + pt +
                           R"( ], "outputs": [ "pt.radiance" ] })";
-        auto g = test::buildSceneGraph(s, text, "alpha", seed, kSize, kSize);
+        auto g = test::buildSceneGraph(s, text, "alpha", seed, kAlphaSize, kAlphaSize);
         std::vector<Frame> out;
         for (int f = 0; f < frames; ++f) {
-            g->setCamera(scene::makeFrameCamera(s.scene.cameras.at(size_t(camera)), kSize, kSize,
-                                                {}, g->frameIndex(), nullptr, nullptr));
+            g->setCamera(scene::makeFrameCamera(s.scene.cameras.at(size_t(camera)), kAlphaSize,
+                                                kAlphaSize, {}, g->frameIndex(), nullptr, nullptr));
             g->runFrame();
             Frame frame;
             frame.radiance = g->image("pt.radiance").downloadRGBA32F(ctx());

@@ -24,7 +24,7 @@ using namespace fovea::testbmfr;
 
 namespace {
 
-constexpr int kSize = 64;  // 2x2 blocks
+constexpr int kFitSize = 64;  // 2x2 blocks
 const char* kNoOffsets = R"({ "blockOffsets": false })";
 
 // TwoPixels: only the first two pixels of each block are hits. After the constant column every
@@ -40,10 +40,10 @@ const char* kGeometryNames[] = {"Curved", "FlatWall", "ConstantNormals", "AllZer
 // Smooth synthetic G-buffer; `shift` is added to every position.
 BmfrInputs geometry(Geometry kind, float shift = 0.0f) {
     BmfrInputs in;
-    in.resize(kSize, kSize);
-    for (int y = 0; y < kSize; ++y)
-        for (int x = 0; x < kSize; ++x) {
-            const size_t i = (size_t(y) * kSize + x) * 4;
+    in.resize(kFitSize, kFitSize);
+    for (int y = 0; y < kFitSize; ++y)
+        for (int x = 0; x < kFitSize; ++x) {
+            const size_t i = (size_t(y) * kFitSize + x) * 4;
             float w[3] = {0.05f * x, 0.05f * y, 0.4f * std::sin(0.2f * x) * std::cos(0.15f * y)};
             float n[3] = {0.3f * std::sin(0.1f * x + 1.0f), 0.3f * std::cos(0.13f * y), 1.0f};
             if (kind == Geometry::FlatWall) w[2] = 0.0f;
@@ -83,7 +83,7 @@ void blockMean(const BmfrInputs& in, int bx, int by, double mean[3]) {
     mean[0] = mean[1] = mean[2] = 0.0;
     for (int y = 0; y < 32; ++y)
         for (int x = 0; x < 32; ++x) {
-            size_t i = size_t(by * 32 + y) * kSize + size_t(bx * 32 + x);
+            size_t i = size_t(by * 32 + y) * kFitSize + size_t(bx * 32 + x);
             for (int c = 0; c < 3; ++c) mean[c] += in.position[i * 4 + c] / 1024.0;
         }
 }
@@ -93,7 +93,7 @@ testref::BmfrBlockInput blockOf(const BmfrInputs& in, const std::vector<float>& 
     testref::BmfrBlockInput b;
     for (int y = 0; y < 32; ++y)
         for (int x = 0; x < 32; ++x) {
-            size_t i = size_t(by * 32 + y) * kSize + size_t(bx * 32 + x);
+            size_t i = size_t(by * 32 + y) * kFitSize + size_t(bx * 32 + x);
             if (in.position[i * 4 + 3] <= 0.0f) continue;  // a miss is no row of the fit
             for (int c = 0; c < 3; ++c) {
                 b.position.push_back(in.position[i * 4 + c]);
@@ -105,7 +105,7 @@ testref::BmfrBlockInput blockOf(const BmfrInputs& in, const std::vector<float>& 
 }
 
 size_t pixelOf(int bx, int by, int k) {
-    return size_t(by * 32 + k / 32) * kSize + size_t(bx * 32 + k % 32);
+    return size_t(by * 32 + k / 32) * kFitSize + size_t(bx * 32 + k % 32);
 }
 
 // Runs one frame and returns `fitted`.
@@ -192,7 +192,7 @@ TEST_F(BMFRFitTest, NoisyResidualWithinOnePercentOfLeastSquares) {
     BmfrInputs in = geometry(Geometry::Curved);
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> noise(-0.5f, 0.5f);
-    for (size_t p = 0; p < size_t(kSize) * kSize; ++p) {
+    for (size_t p = 0; p < size_t(kFitSize) * kFitSize; ++p) {
         const float* w = &in.position[p * 4];
         for (int c = 0; c < 3; ++c)
             in.color[p * 4 + c] = 1.0f + 0.5f * std::sin(3.0f * w[0] + float(c)) +
@@ -228,7 +228,7 @@ TEST_P(BMFRRankDeficientTest, FitsTheProjectionAndStaysFinite) {
     BmfrInputs in = geometry(kind);
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> noise(0.0f, 2.0f);
-    for (size_t p = 0; p < size_t(kSize) * kSize; ++p)
+    for (size_t p = 0; p < size_t(kFitSize) * kFitSize; ++p)
         for (int c = 0; c < 3; ++c)
             in.color[p * 4 + c] = 0.5f + 0.2f * in.position[p * 4] + noise(rng);
     std::vector<float> normals;

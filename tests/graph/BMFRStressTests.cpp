@@ -22,14 +22,14 @@ using namespace fovea::testbmfr;
 
 namespace {
 
-constexpr int kSize = 32;
+constexpr int kStressSize = 32;
 
 float truth(const float* w, int c) {
     return 1.0f + 0.3f * w[0] + 0.2f * w[1] * w[1] + 0.1f * float(c);
 }
 
 // A curved surface; colour = truth(position - shift) + uniform noise in [-0.5, 0.5].
-BmfrInputs makeScene(float shift, uint32_t noiseSeed, int size = kSize) {
+BmfrInputs makeScene(float shift, uint32_t noiseSeed, int size = kStressSize) {
     BmfrInputs in;
     in.resize(size, size);
     std::mt19937 rng(noiseSeed);
@@ -79,7 +79,7 @@ TEST_P(BMFRBadInputTest, NonFiniteAndExtremeInputsNeverEnterHistory) {
     BmfrInputs in = makeScene(0.0f, 1);
     const float inf = std::numeric_limits<float>::infinity();
     const float nan = std::numeric_limits<float>::quiet_NaN();
-    auto px = [&](int x, int y) { return (size_t(y) * kSize + x) * 4; };
+    auto px = [&](int x, int y) { return (size_t(y) * kStressSize + x) * 4; };
     in.color[px(3, 3) + 0] = nan;  // non-finite colour x3
     in.color[px(10, 4) + 1] = inf;
     in.color[px(20, 20) + 2] = -inf;
@@ -117,7 +117,7 @@ INSTANTIATE_TEST_SUITE_P(HistoryPrecision, BMFRBadInputTest, ::testing::Values(f
 
 TEST_F(BMFRStressTest, ZeroAlbedoRemodulatesWithOne) {
     BmfrInputs in = makeScene(0.0f, 2);
-    for (size_t p = 0; p < size_t(kSize) * kSize; ++p)
+    for (size_t p = 0; p < size_t(kStressSize) * kStressSize; ++p)
         for (int c = 0; c < 3; ++c) {
             in.albedo[p * 4 + c] = (p % 2 == 0) ? 0.0f : 0.5f;
             in.emission[p * 4 + c] = 0.25f;
@@ -127,7 +127,7 @@ TEST_F(BMFRStressTest, ZeroAlbedoRemodulatesWithOne) {
     auto fitted = h.read("fitted");
     auto out = h.read("filtered");
     ASSERT_TRUE(allFinite(out));
-    for (size_t p = 0; p < size_t(kSize) * kSize; ++p)
+    for (size_t p = 0; p < size_t(kStressSize) * kStressSize; ++p)
         for (int c = 0; c < 3; ++c) {
             float albedo = (p % 2 == 0) ? 1.0f : 0.5f;  // albedo' of the contract
             ASSERT_NEAR(out[p * 4 + c], fitted[p * 4 + c] * albedo + 0.25f, 1e-5f) << p;
@@ -184,17 +184,17 @@ TEST_F(BMFRStressTest, LongStaticAccumulationSaturatesWithoutDrift) {
     ASSERT_TRUE(allFinite(acc));
     ASSERT_TRUE(allFinite(out));
     double bias = 0.0, err = 0.0;
-    for (size_t p = 0; p < size_t(kSize) * kSize; ++p) {
+    for (size_t p = 0; p < size_t(kStressSize) * kStressSize; ++p) {
         ASSERT_EQ(acc[p * 4 + 3], 255.0f) << "count saturates at 255";
-        float w[3] = {0.05f * float(p % kSize), 0.05f * float(p / kSize), 0};
+        float w[3] = {0.05f * float(p % kStressSize), 0.05f * float(p / kStressSize), 0};
         for (int c = 0; c < 3; ++c) {
             double d = double(out[p * 4 + c]) - truth(w, c);
             bias += d;
             err += std::fabs(d);
         }
     }
-    bias /= double(kSize * kSize * 3);
-    err /= double(kSize * kSize * 3);
+    bias /= double(kStressSize * kStressSize * 3);
+    err /= double(kStressSize * kStressSize * 3);
     // EMA with alpha 0.2 of U(-0.5, 0.5) noise keeps std ~0.1 in `accumulated`; the fit and the
     // second accumulation smooth it further. No drift: the mean error stays near zero.
     EXPECT_LT(std::fabs(bias), 0.02);
@@ -215,7 +215,7 @@ TEST_F(BMFRStressTest, CameraCutEveryFrameRestartsCleanly) {
         auto fitted = h.read("fitted");
         auto out = h.read("filtered");
         ASSERT_TRUE(allFinite(acc) && allFinite(fitted) && allFinite(out)) << "frame " << f;
-        for (size_t p = 0; p < size_t(kSize) * kSize; ++p) {
+        for (size_t p = 0; p < size_t(kStressSize) * kStressSize; ++p) {
             ASSERT_EQ(acc[p * 4 + 3], p == 7 ? 0.0f : 1.0f) << "count restarts, pixel " << p;
             for (int c = 0; c < 3; ++c)  // no history: phase III passes the fit through
                 ASSERT_EQ(out[p * 4 + c], fitted[p * 4 + c]);
@@ -230,9 +230,9 @@ TEST_F(BMFRStressTest, DiscardTestRejectsMovedAndTurnedSurfaces) {
     h.runFrame();
     // Frame 2: the left third moves 1 unit (beyond positionThreshold 0.1), the bottom third
     // turns its normals around (cosine < normalThreshold 0.5); the rest is unchanged.
-    for (int y = 0; y < kSize; ++y)
-        for (int x = 0; x < kSize; ++x) {
-            size_t i = (size_t(y) * kSize + x) * 4;
+    for (int y = 0; y < kStressSize; ++y)
+        for (int x = 0; x < kStressSize; ++x) {
+            size_t i = (size_t(y) * kStressSize + x) * 4;
             if (x < 10) in.position[i + 2] += 1.0f;
             if (y >= 22)
                 for (int c = 0; c < 3; ++c) in.normal[i + c] = -in.normal[i + c];
@@ -240,10 +240,10 @@ TEST_F(BMFRStressTest, DiscardTestRejectsMovedAndTurnedSurfaces) {
     h.upload(in);
     h.runFrame();
     auto acc = h.read("accumulated");
-    for (int y = 0; y < kSize; ++y)
-        for (int x = 0; x < kSize; ++x) {
+    for (int y = 0; y < kStressSize; ++y)
+        for (int x = 0; x < kStressSize; ++x) {
             float want = (x < 10 || y >= 22) ? 1.0f : 2.0f;
-            ASSERT_EQ(acc[(size_t(y) * kSize + x) * 4 + 3], want) << x << "," << y;
+            ASSERT_EQ(acc[(size_t(y) * kStressSize + x) * 4 + 3], want) << x << "," << y;
         }
 }
 

@@ -12,8 +12,6 @@ using namespace fovea::clitest;
 
 namespace {
 
-const fs::path kGraph = kRepo / "graphs" / "demo.json";
-
 Result smallBench(const TempDir& tmp, const fs::path& out, std::vector<std::string> extra = {}) {
     const json spec = {{"version", 1},
                        {"name", "tiny"},
@@ -23,7 +21,7 @@ Result smallBench(const TempDir& tmp, const fs::path& out, std::vector<std::stri
                        {"warmup", 1},
                        {"output", "acc.mean"},
                        {"reference", {{"render", {{"spp", 2}}}}},
-                       {"graphs", {{{"label", "spp 1"}, {"file", kGraph.string()}}}}};
+                       {"graphs", {{{"label", "spp 1"}, {"file", kDemoGraph.string()}}}}};
     const fs::path file = tmp / "small.bench.json";
     writeText(file, spec.dump(2));
     std::vector<std::string> args = {"bench", file.string(), "--out", out.string(), "--quiet"};

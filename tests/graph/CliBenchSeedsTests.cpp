@@ -11,8 +11,6 @@ using namespace fovea::clitest;
 
 namespace {
 
-const fs::path kGraph = kRepo / "graphs" / "demo.json";
-
 json seedsBench() {
     return {{"version", 1},
             {"name", "seeds"},
@@ -26,12 +24,12 @@ json seedsBench() {
             {"reference", {{"render", {{"spp", 4}}}}},
             // The second graph changes the output (2 spp); the third is the first again.
             {"graphs",
-             {{{"label", "spp 1"}, {"file", kGraph.string()}, {"set", {"pt.spp=1"}}},
-              {{"label", "spp 2"}, {"file", kGraph.string()}, {"set", {"pt.spp=2"}}},
-              {{"label", "spp 1 again"}, {"file", kGraph.string()}, {"set", {"pt.spp=1"}}}}}};
+             {{{"label", "spp 1"}, {"file", kDemoGraph.string()}, {"set", {"pt.spp=1"}}},
+              {{"label", "spp 2"}, {"file", kDemoGraph.string()}, {"set", {"pt.spp=2"}}},
+              {{"label", "spp 1 again"}, {"file", kDemoGraph.string()}, {"set", {"pt.spp=1"}}}}}};
 }
 
-Result bench(const TempDir& tmp, const json& spec, const std::string& out) {
+Result benchSeeds(const TempDir& tmp, const json& spec, const std::string& out) {
     const fs::path file = tmp / (out + ".bench.json");
     writeText(file, spec.dump(2));
     return cli({"bench", file.string(), "--out", (tmp / out).string(), "--quiet"});
@@ -64,7 +62,7 @@ double scaleOf(size_t figure) {
 
 TEST(CliBenchSeeds, MeansPerSeedErrorsAndPairedDifferences) {
     TempDir tmp;
-    Result r = bench(tmp, seedsBench(), "out");
+    Result r = benchSeeds(tmp, seedsBench(), "out");
     ASSERT_EQ(r.code, 0) << r.describe();
     const json j = json::parse(readText(tmp / "out" / "bench.json"));
     EXPECT_EQ(j.at("seeds"), json::array({1, 2}));
@@ -147,7 +145,7 @@ TEST(CliBenchSeeds, OneSeedWritesNoSeedFigures) {
     spec["frames"] = 2;
     spec["seeds"] = {5};
     spec["graphs"].erase(2);
-    Result r = bench(tmp, spec, "out");
+    Result r = benchSeeds(tmp, spec, "out");
     ASSERT_EQ(r.code, 0) << r.describe();
     const json j = json::parse(readText(tmp / "out" / "bench.json"));
     EXPECT_EQ(j.at("seed"), 5);

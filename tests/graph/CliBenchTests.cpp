@@ -8,8 +8,6 @@ using namespace fovea::clitest;
 
 namespace {
 
-const fs::path kGraph = kRepo / "graphs" / "demo.json";
-
 json tinyBench() {
     return {{"version", 1},
             {"name", "tiny"},
@@ -20,8 +18,8 @@ json tinyBench() {
             {"output", "acc.mean"},
             {"reference", {{"render", {{"spp", 8}}}}},
             {"graphs",
-             {{{"label", "spp 1"}, {"file", kGraph.string()}, {"set", {"pt.spp=1"}}},
-              {{"label", "spp 2"}, {"file", kGraph.string()}, {"set", {"pt.spp=2"}}}}}};
+             {{{"label", "spp 1"}, {"file", kDemoGraph.string()}, {"set", {"pt.spp=1"}}},
+              {{"label", "spp 2"}, {"file", kDemoGraph.string()}, {"set", {"pt.spp=2"}}}}}};
 }
 
 Result bench(const TempDir& tmp, const json& spec, const std::string& out,
@@ -214,7 +212,8 @@ TEST(CliBench, BadBenchFilesNameThePointer) {
     }
     writeText(tmp / "broken.json", "{ not json");
     Result broken = cli({"bench", (tmp / "broken.json").string(), "--out", (tmp / "b").string()});
-    expectInputError(broken, {(tmp / "broken.json").string(), "line 1, column 4", "JSON syntax error"});
+    expectInputError(broken,
+                     {(tmp / "broken.json").string(), "line 1, column 4", "JSON syntax error"});
 }
 
 TEST(CliBench, ShippedBenchFilesParse) {
@@ -238,7 +237,7 @@ TEST(CliBench, BenchCameraOverridesTheGraphsDefaultCamera) {
     // a graph whose defaults.camera names a path (here one that does not exist, so using it
     // would fail the run). graphs/peres_*.json default to a moving camera path.
     TempDir tmp;
-    json graph = json::parse(readText(kGraph));
+    json graph = json::parse(readText(kDemoGraph));
     graph["defaults"]["camera"] = "no_such_camera_path.json";
     const fs::path file = tmp / "moving.json";
     writeText(file, graph.dump(2));
@@ -265,7 +264,7 @@ TEST(CliBench, SunLightsAGltfWithoutLightsForGraphsAndReference) {
     spec["size"] = {16, 16};
     spec["frames"] = 2;
     spec["reference"] = {{"render", {{"spp", 2}}}};
-    spec["graphs"] = {{{"label", "a"}, {"file", kGraph.string()}}};
+    spec["graphs"] = {{{"label", "a"}, {"file", kDemoGraph.string()}}};
     double rmse[2] = {};
     for (bool sun : {false, true}) {
         spec["sun"] = sun;

@@ -9,8 +9,6 @@ using namespace fovea::clitest;
 
 namespace {
 
-const fs::path kPathTrace = kRepo / "graphs" / "pathtrace.json";
-
 // A 16x8 sky: radiance `value` in the upper half, 0.1 below (or NaN at texel (3, 2)).
 fs::path writeSky(const fs::path& path, float value, bool withNaN = false) {
     fovea::image::ImageRGBA img;
@@ -25,16 +23,12 @@ fs::path writeSky(const fs::path& path, float value, bool withNaN = false) {
     return path;
 }
 
-json readReport(const fs::path& out) {
-    return json::parse(readText(out / "report.json"));
-}
-
 }  // namespace
 
 TEST(CliEnvironment, RunReportsTheEnvironmentAndShowsIt) {
     TempDir tmp;
     const fs::path sky = writeSky(tmp / "sky.exr", 2.0f);
-    Result r = runSmall(kPathTrace, tmp / "out",
+    Result r = runSmall(kPathTraceGraph, tmp / "out",
                         {"--scene", "builtin:cornell", "--env", sky.string(), "--env-intensity",
                          "1.5", "--env-rotation", "30"});
     ASSERT_EQ(r.code, 0) << r.describe();
@@ -60,7 +54,7 @@ TEST(CliEnvironment, BackgroundIsTheEnvironment) {
     const fs::path path = tmp / "up.json";
     writeText(path, R"({ "version": 1, "keyframes": [ { "frame": 0, "position": [278, 5000, 278],)"
                     R"( "target": [278, 5001, 278], "up": [0, 0, 1] } ] })");
-    Result r = cli({"run", kPathTrace.string(), "--scene", "builtin:cornell", "--camera",
+    Result r = cli({"run", kPathTraceGraph.string(), "--scene", "builtin:cornell", "--camera",
                     path.string(), "--env", sky.string(), "--env-intensity", "1.5", "--size", "8x8",
                     "--frames", "1", "--out", (tmp / "out").string()});
     ASSERT_EQ(r.code, 0) << r.describe();
@@ -74,7 +68,7 @@ TEST(CliEnvironment, BadFilesAndOptionsExit2NamingThem) {
     const fs::path sky = writeSky(tmp / "sky.exr", 1.0f);
     auto run = [&](std::vector<std::string> extra) {
         extra.insert(extra.begin(), {"--scene", "builtin:cornell"});
-        return runSmall(kPathTrace, tmp / "out", extra);
+        return runSmall(kPathTraceGraph, tmp / "out", extra);
     };
     expectInputError(run({"--env", (tmp / "missing.exr").string()}), {"missing.exr", "not found"});
     expectInputError(run({"--env", writeSky(tmp / "nan.exr", 1.0f, true).string()}),
@@ -101,7 +95,7 @@ TEST(CliEnvironment, BenchEnvKey) {
                  {"frames", 2},
                  {"output", "pt.radiance"},
                  {"reference", {{"render", {{"spp", 4}}}}},
-                 {"graphs", {{{"label", "pt"}, {"file", kPathTrace.string()}}}}};
+                 {"graphs", {{{"label", "pt"}, {"file", kPathTraceGraph.string()}}}}};
     auto bench = [&](const json& j, const std::string& out) {
         writeText(tmp / (out + ".bench.json"), j.dump(2));
         return cli({"bench", (tmp / (out + ".bench.json")).string(), "--out", (tmp / out).string(),
@@ -142,9 +136,11 @@ TEST(CliEnvironment, RealHdriFromBlenderData) {
     ASSERT_TRUE(fs::exists(forest)) << "blender-data is installed by scripts/install-deps.sh";
     TempDir tmp;
     auto run = [&](const std::string& out, std::vector<std::string> extra) {
-        std::vector<std::string> args = {
-            "run",   kPathTrace.string(), "--scene", "builtin:cornell", "--size",
-            "32x32", "--frames",          "1",       "--out",           (tmp / out).string()};
+        std::vector<std::string> args = {"run",      kPathTraceGraph.string(),
+                                         "--scene",  "builtin:cornell",
+                                         "--size",   "32x32",
+                                         "--frames", "1",
+                                         "--out",    (tmp / out).string()};
         args.insert(args.end(), extra.begin(), extra.end());
         return cli(args);
     };

@@ -9,7 +9,6 @@ using namespace fovea::clitest;
 
 namespace {
 
-const fs::path kPathTraceGraph = kRepo / "graphs" / "pathtrace.json";
 const fs::path kDenoiseGraph = kRepo / "graphs" / "denoise_exr_sequence.json";
 
 // Two frames of 1 spp path tracing of the Cornell box, 32x32: seq/pt.radiance.frame000{0,1}.exr.

@@ -9,11 +9,9 @@ using namespace fovea::clitest;
 
 namespace {
 
-const fs::path kGraph = kRepo / "graphs" / "demo.json";  // outputs pt.radiance, acc.mean, tm.ldr
-
 Result run(const fs::path& out, std::vector<std::string> extra, const std::string& frames = "3") {
-    std::vector<std::string> args = {"run",    kGraph.string(), "--out",    out.string(),
-                                     "--size", "32x32",         "--frames", frames};
+    std::vector<std::string> args = {"run",   kDemoGraph.string(), "--out", out.string(), "--size",
+                                     "32x32", "--frames",          frames};
     args.insert(args.end(), extra.begin(), extra.end());
     return cli(args);
 }

@@ -10,12 +10,10 @@ using fovea::image::ImageRGBA;
 
 namespace {
 
-const fs::path kGraph = kRepo / "graphs" / "demo.json";  // outputs pt.radiance, acc.mean, tm.ldr
-
 Result runWithReference(const fs::path& out, const std::string& frames,
                         std::vector<std::string> extra) {
-    std::vector<std::string> args = {"run",    kGraph.string(), "--out",    out.string(),
-                                     "--size", "32x32",         "--frames", frames};
+    std::vector<std::string> args = {"run",   kDemoGraph.string(), "--out", out.string(), "--size",
+                                     "32x32", "--frames",          frames};
     args.insert(args.end(), extra.begin(), extra.end());
     return cli(args);
 }

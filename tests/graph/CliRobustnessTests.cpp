@@ -17,7 +17,6 @@ using namespace fovea::clitest;
 
 namespace {
 
-const fs::path kPathTraceGraph = kRepo / "graphs" / "pathtrace.json";
 const fs::path kBmfrGraph = kRepo / "graphs" / "koskela_bmfr.json";
 
 // A valid one-pass graph whose `extra` text is spliced into the top-level object.

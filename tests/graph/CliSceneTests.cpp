@@ -8,12 +8,7 @@ using namespace fovea::clitest;
 
 namespace {
 
-const fs::path kPathTrace = kRepo / "graphs" / "pathtrace.json";
 const fs::path kDolly = kRepo / "graphs" / "cameras" / "cornell_dolly.json";
-
-json readReport(const fs::path& out) {
-    return json::parse(readText(out / "report.json"));
-}
 
 const json& passNamed(const json& report, const std::string& name) {
     for (const auto& p : report.at("passes"))
@@ -25,7 +20,7 @@ const json& passNamed(const json& report, const std::string& name) {
 
 TEST(CliScene, RunReportsTheSceneAndTheVariants) {
     TempDir tmp;
-    Result r = runSmall(kPathTrace, tmp / "out", {"--scene", "builtin:cornell"});
+    Result r = runSmall(kPathTraceGraph, tmp / "out", {"--scene", "builtin:cornell"});
     ASSERT_EQ(r.code, 0) << r.describe();
     json report = readReport(tmp / "out");
     const json& s = report.at("scene");
@@ -48,8 +43,8 @@ TEST(CliScene, RunReportsTheSceneAndTheVariants) {
 
 TEST(CliScene, StereoIsOneSideBySideImage) {
     TempDir tmp;
-    Result r = cli({"run", kPathTrace.string(), "--scene", "builtin:cornell", "--stereo", "--size",
-                    "64x32", "--frames", "1", "--out", (tmp / "out").string()});
+    Result r = cli({"run", kPathTraceGraph.string(), "--scene", "builtin:cornell", "--stereo",
+                    "--size", "64x32", "--frames", "1", "--out", (tmp / "out").string()});
     ASSERT_EQ(r.code, 0) << r.describe();
     EXPECT_EQ(readReport(tmp / "out").at("scene").at("stereo"), true);
     auto image = ::fovea::image::readImage(tmp / "out" / "pt.radiance.exr");
@@ -66,7 +61,7 @@ TEST(CliScene, StereoIsOneSideBySideImage) {
 
 TEST(CliScene, CameraPathMovesTheCameraAndCutsReset) {
     TempDir tmp;
-    Result r = cli({"run", kPathTrace.string(), "--scene", "builtin:cornell", "--camera",
+    Result r = cli({"run", kPathTraceGraph.string(), "--scene", "builtin:cornell", "--camera",
                     kDolly.string(), "--size", "16x16", "--frames", "9", "--save-frames", "0,7,8",
                     "--out", (tmp / "out").string()});
     ASSERT_EQ(r.code, 0) << r.describe();
@@ -83,7 +78,7 @@ TEST(CliScene, BadSceneOptionsNameTheFlag) {
     TempDir tmp;
     auto run = [&](std::vector<std::string> extra) {
         std::vector<std::string> args = {
-            "run", kPathTrace.string(), "--out", (tmp / "o").string(), "--size", "8x8"};
+            "run", kPathTraceGraph.string(), "--out", (tmp / "o").string(), "--size", "8x8"};
         args.insert(args.end(), extra.begin(), extra.end());
         return cli(args);
     };
@@ -111,9 +106,9 @@ TEST(CliScene, BadSceneOptionsNameTheFlag) {
 TEST(CliScene, WithoutASceneScenePassesAreCulledWithAReason) {
     // Every output of graphs/pathtrace.json needs geometry: without a scene nothing is left to
     // run, which is an input error naming the reason.
-    expectInputError(cli({"validate", kPathTrace.string(), "--scene", "none"}),
+    expectInputError(cli({"validate", kPathTraceGraph.string(), "--scene", "none"}),
                      {"pathtrace.json", "/outputs", "the scene lacks geometry"});
-    Result ok = cli({"validate", kPathTrace.string(), "--scene", "builtin:cornell"});
+    Result ok = cli({"validate", kPathTraceGraph.string(), "--scene", "builtin:cornell"});
     ASSERT_EQ(ok.code, 0) << ok.describe();
     EXPECT_TRUE(contains(ok.out, "2 passes run, 0 culled")) << ok.describe();
 }
@@ -140,10 +135,10 @@ TEST(CliScene, SceneWithoutLightsWarnsAndSunLightsIt) {
     const fs::path file = kRepo / ".." / "shared" / "scenes" / "suzanne" / "suzanne.glb";
     if (!fs::exists(file)) GTEST_SKIP() << file << " not present";
     TempDir tmp;
-    Result dark = runSmall(kPathTrace, tmp / "dark", {"--scene", file.string()});
+    Result dark = runSmall(kPathTraceGraph, tmp / "dark", {"--scene", file.string()});
     ASSERT_EQ(dark.code, 0) << dark.describe();
     EXPECT_TRUE(contains(dark.err, "no light")) << dark.describe();
-    Result sun = runSmall(kPathTrace, tmp / "sun", {"--scene", file.string(), "--sun"});
+    Result sun = runSmall(kPathTraceGraph, tmp / "sun", {"--scene", file.string(), "--sun"});
     ASSERT_EQ(sun.code, 0) << sun.describe();
     EXPECT_FALSE(contains(sun.err, "no light")) << sun.describe();
     json report = readReport(tmp / "sun");
@@ -157,9 +152,9 @@ TEST(CliScene, SceneWithoutLightsWarnsAndSunLightsIt) {
 TEST(CliScene, ReportCarriesPassStatistics) {
     // Pass::statistics reaches report.json: BMFR's sanitizer counters (docs/report-format.md).
     TempDir tmp;
-    Result r = cli({"run", (kRepo / "graphs" / "koskela_bmfr.json").string(), "--size", "32x32",
-                    "--frames", "2", "--save-frames", "none", "--out", (tmp / "k").string(),
-                    "--quiet"});
+    Result r =
+        cli({"run", (kRepo / "graphs" / "koskela_bmfr.json").string(), "--size", "32x32",
+             "--frames", "2", "--save-frames", "none", "--out", (tmp / "k").string(), "--quiet"});
     ASSERT_EQ(r.code, 0) << r.describe();
     json report = readReport(tmp / "k");
     bool found = false;
@@ -183,8 +178,8 @@ TEST(CliScene, ReportCarriesPathTraceRayCounts) {
     // primary rays, one per pixel and frame (16 x 16 x 2 frames).
     TempDir tmp;
     Result r = cli({"run", (kRepo / "graphs" / "reference.json").string(), "--size", "16x16",
-                    "--frames", "2", "--save-frames", "none", "--set", "pt.countRays=true",
-                    "--out", (tmp / "r").string(), "--quiet"});
+                    "--frames", "2", "--save-frames", "none", "--set", "pt.countRays=true", "--out",
+                    (tmp / "r").string(), "--quiet"});
     ASSERT_EQ(r.code, 0) << r.describe();
     json report = readReport(tmp / "r");
     for (const auto& p : report.at("passes")) {

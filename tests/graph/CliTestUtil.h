@@ -28,12 +28,19 @@ namespace fovea::clitest {
 
 const fs::path kRepo = fs::path(FOVEA_TEST_DIR).parent_path();
 const fs::path kDemo = kRepo / "graphs" / "tests" / "utility_demo.json";
+const fs::path kDemoGraph =
+    kRepo / "graphs" / "demo.json";  // outputs pt.radiance, acc.mean, tm.ldr
+const fs::path kPathTraceGraph = kRepo / "graphs" / "pathtrace.json";
 
 inline std::string readText(const fs::path& path) {
     std::ifstream stream(path, std::ios::binary);
     std::stringstream buffer;
     buffer << stream.rdbuf();
     return buffer.str();
+}
+
+inline json readReport(const fs::path& out) {
+    return json::parse(readText(out / "report.json"));
 }
 
 inline void writeText(const fs::path& path, const std::string& text) {

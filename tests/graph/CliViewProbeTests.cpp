@@ -6,11 +6,7 @@
 
 using namespace fovea::clitest;
 
-namespace {
-
-const fs::path kPathTraceGraph = kRepo / "graphs" / "pathtrace.json";
-
-}  // namespace
+namespace {}  // namespace
 
 // --- primary-ray probe: report.json "primary_rays" and its warnings ------------------------------
 

@@ -28,7 +28,7 @@ using namespace fovea::graph;
 
 namespace {
 
-constexpr uint32_t kSize = 64;
+constexpr uint32_t kGBufferSize = 64;
 constexpr uint32_t kTraced = 1u, kHit = 2u;
 
 // Closest hit of a ray against every mesh triangle (double precision Moeller-Trumbore).
@@ -122,13 +122,13 @@ protected:
         scene::CameraDesc desc = cornell().cameras.at(0);
         desc.position += shift;
         desc.target += shift;
-        return scene::makeFrameCamera(desc, width, kSize, rig, 0, previous, nullptr);
+        return scene::makeFrameCamera(desc, width, kGBufferSize, rig, 0, previous, nullptr);
     }
 
     static std::unique_ptr<RenderGraph> makeGraph(uint32_t width, const std::string& layout = "") {
         CompileOptions o;
         o.width = width;
-        o.height = kSize;
+        o.height = kGBufferSize;
         o.sceneFeatures = cornellGpu().features();
         auto g = std::make_unique<RenderGraph>(ctx(), passRegistry());
         g->setScene(&cornellGpu());
@@ -182,13 +182,13 @@ protected:
 // Every pixel's visibility matches a brute-force CPU ray cast through the same camera: same
 // triangle (or a tie on a shared edge), same barycentrics; misses agree.
 TEST_F(GBufferTest, VisibilityMatchesCpuRayCast) {
-    const auto cam = camera(kSize);
-    const GBufferData d = render(cam, kSize);
+    const auto cam = camera(kGBufferSize);
+    const GBufferData d = render(cam, kGBufferSize);
     const auto& mesh = cornell().mesh;
     const auto& order = cornellGpu().triangleOrder();
     size_t exact = 0, ties = 0, hits = 0, bad = 0;
-    for (uint32_t y = 0; y < kSize; ++y)
-        for (uint32_t x = 0; x < kSize; ++x) {
+    for (uint32_t y = 0; y < kGBufferSize; ++y)
+        for (uint32_t x = 0; x < kGBufferSize; ++x) {
             const glm::uvec4 v = d.visibility[d.at(x, y)];
             glm::vec3 o, dir;
             scene::primaryRay(cam, glm::vec2(x, y) + 0.5f, o, dir);
@@ -230,8 +230,8 @@ TEST_F(GBufferTest, VisibilityMatchesCpuRayCast) {
                               << " " << cpu.bary.y << " t " << cpu.t;
         }
     EXPECT_EQ(bad, 0u);
-    EXPECT_GT(hits, kSize * kSize / 2) << "the box fills most of the view";
-    EXPECT_LE(ties, kSize) << "edge ties should be rare";
+    EXPECT_GT(hits, kGBufferSize * kGBufferSize / 2) << "the box fills most of the view";
+    EXPECT_LE(ties, kGBufferSize) << "edge ties should be rare";
     EXPECT_GT(exact, hits - ties - 1);
 }
 
@@ -242,23 +242,23 @@ TEST_F(GBufferTest, NormalsFaceViewerAndDepthMatchesPosition) {
     // wall shows its back face, whose normal must be flipped.
     scene::CameraDesc behind = cornell().cameras.at(0);
     behind.position.z = 1500.0f;
-    checkNormalsAndDepth(camera(kSize));
-    const GBufferData d =
-        checkNormalsAndDepth(scene::makeFrameCamera(behind, kSize, kSize, {}, 0, nullptr, nullptr));
+    checkNormalsAndDepth(camera(kGBufferSize));
+    const GBufferData d = checkNormalsAndDepth(
+        scene::makeFrameCamera(behind, kGBufferSize, kGBufferSize, {}, 0, nullptr, nullptr));
     // The back wall's front face looks into the box (-z): seen from behind, flipped to +z.
     size_t flipped = 0;
     for (size_t i = 0; i < d.visibility.size(); ++i)
         if ((d.visibility[i].w & kHit) && d.normal[4 * i + 2] > 0.99f) ++flipped;
-    EXPECT_GT(flipped, kSize * kSize / 4);
+    EXPECT_GT(flipped, kGBufferSize * kGBufferSize / 4);
 }
 
 GBufferData GBufferTest::checkNormalsAndDepth(const scene::FrameCamera& cam) {
-    const GBufferData d = render(cam, kSize);
+    const GBufferData d = render(cam, kGBufferSize);
     const glm::vec3 eye = cam.eyes[0].position;
     const glm::vec3 forward = -glm::vec3(glm::inverse(cam.eyes[0].view)[2]);
     size_t hits = 0;
-    for (uint32_t y = 0; y < kSize; ++y)
-        for (uint32_t x = 0; x < kSize; ++x) {
+    for (uint32_t y = 0; y < kGBufferSize; ++y)
+        for (uint32_t x = 0; x < kGBufferSize; ++x) {
             const size_t i = d.at(x, y);
             glm::vec3 o, dir;
             scene::primaryRay(cam, glm::vec2(x, y) + 0.5f, o, dir);
@@ -288,7 +288,7 @@ GBufferData GBufferTest::checkNormalsAndDepth(const scene::FrameCamera& cam) {
 // Albedo and material ids of the coloured walls, roughness/metallic of every hit, and emission
 // nonzero exactly on the light.
 TEST_F(GBufferTest, AlbedoMaterialAndEmissionOfKnownSurfaces) {
-    const GBufferData d = render(camera(kSize), kSize);
+    const GBufferData d = render(camera(kGBufferSize), kGBufferSize);
     const auto& scene = cornell();
     const auto& order = cornellGpu().triangleOrder();
     const uint32_t red = materialNamed("red"), green = materialNamed("green"),
@@ -328,11 +328,11 @@ TEST_F(GBufferTest, AlbedoMaterialAndEmissionOfKnownSurfaces) {
 // Motion: exactly zero for a static camera; for a camera moved sideways by dx between frames
 // every hit pixel moves by f * dx / depth along x (f = focal length in pixels), 0 along y.
 TEST_F(GBufferTest, MotionVectorsStaticAndSideways) {
-    auto g = makeGraph(kSize);
-    const auto first = camera(kSize);
+    auto g = makeGraph(kGBufferSize);
+    const auto first = camera(kGBufferSize);
     g->setCamera(first);
     g->runFrame();
-    const auto still = camera(kSize, {}, &first);
+    const auto still = camera(kGBufferSize, {}, &first);
     g->setCamera(still);
     g->runFrame();
     GBufferData d = read(*g);
@@ -344,11 +344,11 @@ TEST_F(GBufferTest, MotionVectorsStaticAndSideways) {
     // The Cornell camera looks down +z with up +y: its right axis is world -x.
     const float dx = 10.0f;  // mm
     const glm::vec3 right = glm::vec3(glm::inverse(first.eyes[0].view)[0]);
-    const auto moved = camera(kSize, {}, &still, right * dx);
+    const auto moved = camera(kGBufferSize, {}, &still, right * dx);
     g->setCamera(moved);
     g->runFrame();
     d = read(*g);
-    const float f = 0.5f * float(kSize) / std::tan(0.5f * first.yfov);
+    const float f = 0.5f * float(kGBufferSize) / std::tan(0.5f * first.yfov);
     size_t checked = 0;
     for (size_t i = 0; i < d.visibility.size(); ++i) {
         if (!(d.visibility[i].w & kHit)) continue;
@@ -369,50 +369,50 @@ TEST_F(GBufferTest, StereoHalvesShowTheExpectedParallax) {
     scene::CameraRigOptions rig;
     rig.stereo = true;
     rig.ipd = 64.0f;  // the Cornell box is in millimetres
-    const auto cam = camera(2 * kSize, rig);
-    ASSERT_EQ(cam.eyeWidth, kSize);
-    const GBufferData d = render(cam, 2 * kSize);
-    const float f = 0.5f * float(kSize) / std::tan(0.5f * cam.yfov);
+    const auto cam = camera(2 * kGBufferSize, rig);
+    ASSERT_EQ(cam.eyeWidth, kGBufferSize);
+    const GBufferData d = render(cam, 2 * kGBufferSize);
+    const float f = 0.5f * float(kGBufferSize) / std::tan(0.5f * cam.yfov);
     size_t matched = 0, candidates = 0, differ = 0;
-    for (uint32_t y = 0; y < kSize; ++y)
-        for (uint32_t x = 0; x < 2 * kSize; ++x) {
+    for (uint32_t y = 0; y < kGBufferSize; ++y)
+        for (uint32_t x = 0; x < 2 * kGBufferSize; ++x) {
             const glm::uvec4 v = d.visibility[d.at(x, y)];
             EXPECT_EQ(v.w & kTraced, kTraced);
-            EXPECT_EQ((v.w >> 8) & 0xFFu, x < kSize ? 0u : 1u) << x << "," << y;
-            if (x >= kSize) continue;
-            if (v != d.visibility[d.at(x + kSize, y)]) ++differ;
+            EXPECT_EQ((v.w >> 8) & 0xFFu, x < kGBufferSize ? 0u : 1u) << x << "," << y;
+            if (x >= kGBufferSize) continue;
+            if (v != d.visibility[d.at(x + kGBufferSize, y)]) ++differ;
             if (!(v.w & kHit)) continue;
             const size_t i = d.at(x, y);
             const float disparity = f * rig.ipd / d.depth[4 * i];
             const float xr = float(x) + 0.5f - disparity;  // position in the right eye image
             if (xr < 0.0f) continue;
-            const size_t j = d.at(kSize + uint32_t(xr), y);
+            const size_t j = d.at(kGBufferSize + uint32_t(xr), y);
             if (d.visibility[j].x != v.x) continue;  // another surface there (edge/occlusion)
             ++candidates;
             const glm::vec4 clip = cam.eyes[0].viewProj * glm::vec4(d.v3(d.position, j), 1.0f);
             const glm::vec2 ndc = glm::vec2(clip) / clip.w;  // in front of the camera: w > 0
-            const float u = (ndc.x * 0.5f + 0.5f) * float(kSize);
-            const float vv = (0.5f - ndc.y * 0.5f) * float(kSize);
+            const float u = (ndc.x * 0.5f + 0.5f) * float(kGBufferSize);
+            const float vv = (0.5f - ndc.y * 0.5f) * float(kGBufferSize);
             if (std::fabs(u - (float(x) + 0.5f)) <= 1.0f &&
                 std::fabs(vv - (float(y) + 0.5f)) <= 0.05f)
                 ++matched;
         }
-    EXPECT_GT(differ, kSize * kSize / 4) << "the eyes see different images";
-    EXPECT_GT(candidates, kSize * kSize / 2);
+    EXPECT_GT(differ, kGBufferSize * kGBufferSize / 4) << "the eyes see different images";
+    EXPECT_GT(candidates, kGBufferSize * kGBufferSize / 2);
     EXPECT_GE(matched, candidates * 99 / 100) << matched << " of " << candidates;
 }
 
 // With a checkerboard layout only listed pixels are traced (and agree with the full grid); the
 // others carry zeros in every output.
 TEST_F(GBufferTest, LayoutTracesOnlyListedPixels) {
-    const auto cam = camera(kSize);
-    const GBufferData full = render(cam, kSize);
-    auto g = makeGraph(kSize, R"({ "pattern": "checkerboard" })");
+    const auto cam = camera(kGBufferSize);
+    const GBufferData full = render(cam, kGBufferSize);
+    auto g = makeGraph(kGBufferSize, R"({ "pattern": "checkerboard" })");
     g->setCamera(cam);
     g->runFrame();
     const GBufferData d = read(*g);
-    for (uint32_t y = 0; y < kSize; ++y)
-        for (uint32_t x = 0; x < kSize; ++x) {
+    for (uint32_t y = 0; y < kGBufferSize; ++y)
+        for (uint32_t x = 0; x < kGBufferSize; ++x) {
             const size_t i = d.at(x, y);
             if ((x + y) % 2 == 0) {
                 EXPECT_EQ(d.visibility[i], full.visibility[i]) << x << "," << y;
@@ -426,8 +426,9 @@ TEST_F(GBufferTest, LayoutTracesOnlyListedPixels) {
 // A layout that changes every frame: pixels listed last frame but not now are cleared, never
 // stale.
 TEST_F(GBufferTest, LayoutClearsPixelsNotListedThisFrame) {
-    auto g = makeGraph(kSize, R"({ "pattern": "random", "fraction": 0.5, "animate": true })");
-    g->setCamera(camera(kSize));
+    auto g =
+        makeGraph(kGBufferSize, R"({ "pattern": "random", "fraction": 0.5, "animate": true })");
+    g->setCamera(camera(kGBufferSize));
     g->runFrame();
     const GBufferData before = read(*g);
     g->runFrame();
@@ -448,8 +449,8 @@ TEST_F(GBufferTest, LayoutClearsPixelsNotListedThisFrame) {
 
 // Same camera, same inputs: the second frame is served from the cache; a moved camera re-runs.
 TEST_F(GBufferTest, CachedWhileCameraIsStill) {
-    auto g = makeGraph(kSize);
-    const auto cam = camera(kSize);
+    auto g = makeGraph(kGBufferSize);
+    const auto cam = camera(kGBufferSize);
     g->setCamera(cam);
     g->runFrame();
     const size_t n = g->plan().findNode("gb");
@@ -457,7 +458,7 @@ TEST_F(GBufferTest, CachedWhileCameraIsStill) {
     g->setCamera(cam);
     g->runFrame();
     EXPECT_EQ(g->records()[n].status, PassStatus::Cached);
-    g->setCamera(camera(kSize, {}, &cam, glm::vec3(5.0f, 0.0f, 0.0f)));
+    g->setCamera(camera(kGBufferSize, {}, &cam, glm::vec3(5.0f, 0.0f, 0.0f)));
     g->runFrame();
     EXPECT_EQ(g->records()[n].status, PassStatus::Executed);
 }

@@ -27,7 +27,7 @@ using namespace fovea::graph;
 
 namespace {
 
-constexpr float kRho = 0.5f, kSun = 3.0f;
+constexpr float kAlbedoRho = 0.5f, kSun = 3.0f;
 // The tangent-space normal stored in the texture: 30 degrees towards +T (8-bit, as written).
 const glm::u8vec3 kTexel(191, 128, 238);
 
@@ -36,7 +36,7 @@ scene::Scene tiltedPlane(float normalScale, bool withTangents,
     scene::Scene s;
     s.source = "test:normal-map";
     scene::Material m;
-    m.baseColor = glm::vec4(glm::vec3(kRho), 1.0f);
+    m.baseColor = glm::vec4(glm::vec3(kAlbedoRho), 1.0f);
     m.metallic = 0.0f;
     m.normalTexture = 0;
     m.normalScale = normalScale;
@@ -110,7 +110,7 @@ TEST_F(NormalMapTest, TiltedNormalShadesAndGuidesExactly) {
             const auto radiance = g->image("pt.radiance").downloadRGBA32F(ctx());
             const auto normal = g->image("gb.normal").downloadRGBA32F(ctx());
             const glm::vec3 n = withTangents ? expectedNormal(scale) : glm::vec3(0, 1, 0);
-            const float expected = kRho / std::numbers::pi_v<float> * kSun * n.y;
+            const float expected = kAlbedoRho / std::numbers::pi_v<float> * kSun * n.y;
             for (size_t i = 0; i < 64; ++i) {
                 EXPECT_NEAR(radiance[4 * i], expected, 1e-5f)
                     << "scale " << scale << " tangents " << withTangents << " pixel " << i;
@@ -137,7 +137,7 @@ TEST_F(NormalMapTest, BumpShadowingDarkensGrazingLightExactly) {
             const glm::dvec3 n =
                 withTangents ? glm::dvec3(expectedNormal(1.0f)) : glm::dvec3(0, 1, 0);
             const glm::dvec3 wi(towardsSun);
-            double expected = kRho / std::numbers::pi * kSun * glm::dot(n, wi);
+            double expected = kAlbedoRho / std::numbers::pi * kSun * glm::dot(n, wi);
             if (bumpShadowing) expected *= bumpShadowingTerm({0, 1, 0}, n, wi);
             if (bumpShadowing && withTangents) {
                 EXPECT_LT(bumpShadowingTerm({0, 1, 0}, n, wi), 0.97);  // the case bites

@@ -20,7 +20,7 @@ using namespace fovea;
 
 namespace {
 
-constexpr uint32_t kSize = 48;
+constexpr uint32_t kSplitSize = 48;
 
 class PathTraceSplitTest : public GpuTest {
 protected:
@@ -42,9 +42,9 @@ protected:
             R"( "outputs": [ "pt.radiance", "pt.diffuse", "pt.specular", "pt.diffuse_albedo",)"
             R"( "pt.specular_albedo", "pt.demodulated", "pt.diffuse_hit", "pt.specular_hit",)"
             R"( "gb.emission" ] })";
-        auto g = test::buildSceneGraph(cornell(), text, "split", 7, kSize, kSize);
-        g->setCamera(
-            scene::makeFrameCamera(cornell().camera, kSize, kSize, {}, 0, nullptr, nullptr));
+        auto g = test::buildSceneGraph(cornell(), text, "split", 7, kSplitSize, kSplitSize);
+        g->setCamera(scene::makeFrameCamera(cornell().camera, kSplitSize, kSplitSize, {}, 0,
+                                            nullptr, nullptr));
         g->runFrame();
         return g;
     }

@@ -31,7 +31,7 @@ float at(const Image& img, int w, int x, int y, int c) {
     return img[(size_t(y) * w + x) * 4 + c];
 }
 
-bool allFinite(const Image& img) {
+bool imageAllFinite(const Image& img) {
     return std::all_of(img.begin(), img.end(), [](float v) { return std::isfinite(v); });
 }
 
@@ -256,9 +256,10 @@ TEST_P(ReBLURBothSignals, NaNAndInfNeverBecomePermanent) {
     rig.setGeometry(clean);
     const char* outputs[] = {"rbt.preblurred", "rbt.accumulated", "rbt.hit",   "hf.result",
                              "rbs.blurred",    "rbs.history",     "rbs.result"};
-    for (const char* o : outputs) EXPECT_TRUE(allFinite(rig.get(o))) << o << " (bad frame)";
+    for (const char* o : outputs) EXPECT_TRUE(imageAllFinite(rig.get(o))) << o << " (bad frame)";
     for (int f = 0; f < 40; ++f) rig.frame(in);
-    for (const char* o : outputs) EXPECT_TRUE(allFinite(rig.get(o))) << o << " (40 frames later)";
+    for (const char* o : outputs)
+        EXPECT_TRUE(imageAllFinite(rig.get(o))) << o << " (40 frames later)";
     const Image out = rig.get("rbs.result");
     for (size_t i = 0; i < out.size(); ++i)
         if (i % 4 != 3) {
@@ -281,7 +282,7 @@ TEST_F(ReBLURTest, EveryKernelWritesEveryPixel) {
                              "rbs.history",    "rbs.result",      "rbs.radius"};
     for (const char* o : outputs) rig.poison(o, std::numeric_limits<float>::quiet_NaN());
     rig.frame(noise(w, h, 5));
-    for (const char* o : outputs) EXPECT_TRUE(allFinite(rig.get(o))) << o;
+    for (const char* o : outputs) EXPECT_TRUE(imageAllFinite(rig.get(o))) << o;
 }
 
 // Two eyes side by side: the left eye sees 0, the right eye 1 on one continuous plane. With the

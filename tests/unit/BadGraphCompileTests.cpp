@@ -29,6 +29,13 @@ const fs::path kDir = fs::path(FOVEA_TEST_DIR) / "graph" / "bad" / "compile";
 // the compile stages (bypass_size_mismatch.json is now an ordinary member of the loop).
 const std::set<std::string> kGpuOnly = {};
 
+CompileOptions options64x64() {
+    CompileOptions o;
+    o.width = 64;
+    o.height = 64;
+    return o;
+}
+
 std::string readExpect(const fs::path& path) {
     std::ifstream stream(path, std::ios::binary);
     std::stringstream buffer;
@@ -45,13 +52,6 @@ std::vector<fs::path> files(const std::string& extension) {
         if (entry.path().extension() == extension) out.push_back(entry.path());
     std::sort(out.begin(), out.end());
     return out;
-}
-
-CompileOptions options64() {
-    CompileOptions o;
-    o.width = 64;
-    o.height = 64;
-    return o;
 }
 
 }  // namespace
@@ -85,7 +85,7 @@ TEST(BadGraphCompile, EveryFileFailsWithItsMessage) {
             continue;
         }
         try {
-            compileGraphPlan(desc, passRegistry(), options64());
+            compileGraphPlan(desc, passRegistry(), options64x64());
             ADD_FAILURE() << "compiled without error; expected: " << fragment;
         } catch (const InputError& e) {
             std::string what = e.what();
@@ -109,6 +109,6 @@ TEST(BadGraphCompile, GpuOnlyFilesCompileOnTheCpu) {
         SCOPED_TRACE(name);
         ASSERT_TRUE(fs::exists(kDir / name));
         GraphDesc desc = parseGraphFile(kDir / name);
-        EXPECT_NO_THROW(compileGraphPlan(desc, passRegistry(), options64()));
+        EXPECT_NO_THROW(compileGraphPlan(desc, passRegistry(), options64x64()));
     }
 }

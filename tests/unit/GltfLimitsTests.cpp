@@ -69,14 +69,14 @@ InputError gltfError(const fs::path& file, const scene::GltfLoadOptions& options
     return InputError("", "", "");
 }
 
-struct TempFolder {
-    TempFolder() {
+struct LimitsFolder {
+    LimitsFolder() {
         path = fs::temp_directory_path() /
                ("fovea_limits_" + std::to_string(::getpid()) + "_" +
                 testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::create_directories(path);
     }
-    ~TempFolder() {
+    ~LimitsFolder() {
         std::error_code ignored;
         fs::remove_all(path, ignored);
     }
@@ -86,12 +86,12 @@ struct TempFolder {
 }  // namespace
 
 TEST(SceneGltfLimits, OrdinaryTriangleLoads) {
-    TempFolder tmp;
+    LimitsFolder tmp;
     EXPECT_NO_THROW(scene::loadGltf(writeTriangle(tmp.path, 1.0f, "[1, 1, 1]"), {}));
 }
 
 TEST(SceneGltfLimits, VertexAt3e38IsAnError) {
-    TempFolder tmp;
+    LimitsFolder tmp;
     const float far = 3e38f;
     InputError e = gltfError(writeTriangle(tmp.path, far, "[1, 1, 1]"));
     EXPECT_EQ(e.pointer(), "/accessors/0") << e.what();
@@ -100,7 +100,7 @@ TEST(SceneGltfLimits, VertexAt3e38IsAnError) {
 }
 
 TEST(SceneGltfLimits, EmissiveFactor1e39IsAnError) {
-    TempFolder tmp;
+    LimitsFolder tmp;
     InputError e = gltfError(writeTriangle(tmp.path, 1.0f, "[1e39, 1, 1]"));
     EXPECT_EQ(e.pointer(), "/materials/0/emissiveFactor") << e.what();
     // Large HDR emission below the cap still loads (warned as above 1).
@@ -110,7 +110,7 @@ TEST(SceneGltfLimits, EmissiveFactor1e39IsAnError) {
 // A buffer URI that leaves the scene's folder used to be opened (and its size echoed): refused now
 // unless the caller allows external URIs; in-folder files and subfolders still load.
 TEST(SceneGltfLimits, UrisLeavingTheSceneFolderAreRefused) {
-    TempFolder tmp;
+    LimitsFolder tmp;
     const fs::path sceneDir = tmp.path / "scene";
     fs::create_directories(sceneDir / "data");
     const fs::path outside = tmp.path / "secret.bin";

@@ -40,7 +40,7 @@ void expectDefaults(const AllParams& p) {
 }
 
 // The message loadParams throws for `params`, or "<no error>".
-std::string loadError(const json& params) {
+std::string paramLoadError(const json& params) {
     auto pass = makePass();
     try {
         loadParams(*pass, params, "g.json", "/passes/0/params");
@@ -108,17 +108,17 @@ TEST(ParamLoad, EmptyObjectKeepsDefaults) {
 }
 
 TEST(ParamLoad, RejectsNonObject) {
-    EXPECT_EQ(loadError(json::array({1})),
+    EXPECT_EQ(paramLoadError(json::array({1})),
               "g.json: /passes/0/params: expected an object of parameters, got array");
-    EXPECT_EQ(loadError(json(3)),
+    EXPECT_EQ(paramLoadError(json(3)),
               "g.json: /passes/0/params: expected an object of parameters, got integer");
 }
 
 TEST(ParamLoad, RejectsUnknownWithDidYouMean) {
-    EXPECT_EQ(loadError({{"cuont", 1}}),
+    EXPECT_EQ(paramLoadError({{"cuont", 1}}),
               std::string(kPrefix) + "cuont: unknown parameter 'cuont' (did you mean 'count'?)");
     // Nothing close: list the parameters instead.
-    EXPECT_EQ(loadError({{"zzzzzzzzzz", 1}}),
+    EXPECT_EQ(paramLoadError({{"zzzzzzzzzz", 1}}),
               std::string(kPrefix) +
                   "zzzzzzzzzz: unknown parameter 'zzzzzzzzzz' (parameters: enabled, count, big, "
                   "gain, free, mode, label, tint)");
@@ -137,21 +137,24 @@ TEST(ParamLoad, ErrorCarriesFileAndPointer) {
 
 TEST(ParamLoad, RejectsWrongType) {
     std::string p = kPrefix;
-    EXPECT_EQ(loadError({{"enabled", 1}}), p + "enabled: expected a boolean, got integer 1");
-    EXPECT_EQ(loadError({{"enabled", "true"}}),
+    EXPECT_EQ(paramLoadError({{"enabled", 1}}), p + "enabled: expected a boolean, got integer 1");
+    EXPECT_EQ(paramLoadError({{"enabled", "true"}}),
               p + "enabled: expected a boolean, got string \"true\"");
-    EXPECT_EQ(loadError({{"count", 1.5}}), p + "count: expected an integer, got number 1.5");
-    EXPECT_EQ(loadError({{"count", "3"}}), p + "count: expected an integer, got string \"3\"");
-    EXPECT_EQ(loadError({{"gain", "high"}}), p + "gain: expected a number, got string \"high\"");
-    EXPECT_EQ(loadError({{"gain", nullptr}}).find(p + "gain: expected a number, got null"), 0u);
-    EXPECT_EQ(loadError({{"mode", 3}}), p + "mode: expected a string, got integer 3");
-    EXPECT_EQ(loadError({{"tint", {1, 2}}}),
+    EXPECT_EQ(paramLoadError({{"count", 1.5}}), p + "count: expected an integer, got number 1.5");
+    EXPECT_EQ(paramLoadError({{"count", "3"}}), p + "count: expected an integer, got string \"3\"");
+    EXPECT_EQ(paramLoadError({{"gain", "high"}}),
+              p + "gain: expected a number, got string \"high\"");
+    EXPECT_EQ(paramLoadError({{"gain", nullptr}}).find(p + "gain: expected a number, got null"),
+              0u);
+    EXPECT_EQ(paramLoadError({{"mode", 3}}), p + "mode: expected a string, got integer 3");
+    EXPECT_EQ(paramLoadError({{"tint", {1, 2}}}),
               p + "tint: expected an array of 3 numbers, got array [1,2]");
-    EXPECT_EQ(loadError({{"tint", 1}}), p + "tint: expected an array of 3 numbers, got integer 1");
-    EXPECT_EQ(loadError({{"tint", {1, "x", 2}}}),
+    EXPECT_EQ(paramLoadError({{"tint", 1}}),
+              p + "tint: expected an array of 3 numbers, got integer 1");
+    EXPECT_EQ(paramLoadError({{"tint", {1, "x", 2}}}),
               p + "tint/1: expected a number, got string \"x\"");
     // Long values are shortened in the message.
-    std::string msg = loadError({{"count", std::string(100, 'a')}});
+    std::string msg = paramLoadError({{"count", std::string(100, 'a')}});
     EXPECT_NE(msg.find("got string \"aaaa"), std::string::npos) << msg;
     EXPECT_NE(msg.find("..."), std::string::npos) << msg;
     EXPECT_LT(msg.size(), 120u) << msg;
@@ -159,54 +162,55 @@ TEST(ParamLoad, RejectsWrongType) {
 
 TEST(ParamLoad, RejectsOutOfRange) {
     std::string p = kPrefix;
-    EXPECT_EQ(loadError({{"count", 101}}), p + "count: out of range: 101 (allowed 0..100)");
-    EXPECT_EQ(loadError({{"count", -1}}), p + "count: out of range: -1 (allowed 0..100)");
-    EXPECT_EQ(loadError({{"gain", 1.5}}), p + "gain: out of range: 1.5 (allowed -1..1)");
-    EXPECT_EQ(loadError({{"tint", {0, 5, 0}}}), p + "tint: out of range: 5 (allowed 0..4)");
-    EXPECT_EQ(loadError({{"tint", {0, 0, -0.5}}}), p + "tint: out of range: -0.5 (allowed 0..4)");
+    EXPECT_EQ(paramLoadError({{"count", 101}}), p + "count: out of range: 101 (allowed 0..100)");
+    EXPECT_EQ(paramLoadError({{"count", -1}}), p + "count: out of range: -1 (allowed 0..100)");
+    EXPECT_EQ(paramLoadError({{"gain", 1.5}}), p + "gain: out of range: 1.5 (allowed -1..1)");
+    EXPECT_EQ(paramLoadError({{"tint", {0, 5, 0}}}), p + "tint: out of range: 5 (allowed 0..4)");
+    EXPECT_EQ(paramLoadError({{"tint", {0, 0, -0.5}}}),
+              p + "tint: out of range: -0.5 (allowed 0..4)");
     // The range is inclusive.
-    EXPECT_EQ(loadError({{"count", 0}, {"gain", 1.0}, {"tint", {4, 4, 4}}}), "<no error>");
+    EXPECT_EQ(paramLoadError({{"count", 0}, {"gain", 1.0}, {"tint", {4, 4, 4}}}), "<no error>");
 }
 
 TEST(ParamLoad, RejectsIntegerBeyondIntRange) {
     // `big` declares no range, but a value that does not fit an int must not wrap silently.
-    std::string msg = loadError({{"big", 4294967297ll}});
+    std::string msg = paramLoadError({{"big", 4294967297ll}});
     EXPECT_NE(msg.find(std::string(kPrefix) + "big: "), std::string::npos) << msg;
-    msg = loadError({{"big", -3000000000ll}});
+    msg = paramLoadError({{"big", -3000000000ll}});
     EXPECT_NE(msg.find(std::string(kPrefix) + "big: "), std::string::npos) << msg;
 }
 
 TEST(ParamLoad, RejectsFloatBeyondFloatRange) {
     // `free` declares no range; 1e300 is a finite double but would become +inf as a float.
-    std::string msg = loadError({{"free", 1e300}});
+    std::string msg = paramLoadError({{"free", 1e300}});
     EXPECT_NE(msg.find(std::string(kPrefix) + "free: "), std::string::npos) << msg;
 }
 
 TEST(ParamLoad, RejectsBadChoice) {
-    EXPECT_EQ(loadError({{"mode", "exat"}}),
+    EXPECT_EQ(paramLoadError({{"mode", "exat"}}),
               std::string(kPrefix) +
                   "mode: 'exat' is not one of: fast, exact, off (did you mean 'exact'?)");
     EXPECT_EQ(
-        loadError({{"mode", "completely-different"}}),
+        paramLoadError({{"mode", "completely-different"}}),
         std::string(kPrefix) + "mode: 'completely-different' is not one of: fast, exact, off");
     // Choices are case-sensitive.
-    EXPECT_NE(loadError({{"mode", "FAST"}}), "<no error>");
+    EXPECT_NE(paramLoadError({{"mode", "FAST"}}), "<no error>");
 }
 
 TEST(ParamLoad, RejectsNonFinite) {
     const double inf = std::numeric_limits<double>::infinity();
     const double nan = std::numeric_limits<double>::quiet_NaN();
     std::string p = kPrefix;
-    EXPECT_EQ(loadError({{"gain", inf}}), p + "gain: expected a finite number");
+    EXPECT_EQ(paramLoadError({{"gain", inf}}), p + "gain: expected a finite number");
     // NaN compares false with every bound, so only the finiteness check catches it.
-    EXPECT_EQ(loadError({{"free", nan}}), p + "free: expected a finite number");
-    EXPECT_EQ(loadError({{"free", -inf}}), p + "free: expected a finite number");
-    EXPECT_EQ(loadError({{"tint", {0, nan, 0}}}), p + "tint: expected finite numbers");
+    EXPECT_EQ(paramLoadError({{"free", nan}}), p + "free: expected a finite number");
+    EXPECT_EQ(paramLoadError({{"free", -inf}}), p + "free: expected a finite number");
+    EXPECT_EQ(paramLoadError({{"tint", {0, nan, 0}}}), p + "tint: expected finite numbers");
 }
 
 TEST(ParamLoad, FailedLoadNamesTheFirstBadParameter) {
     // Parameters are checked in declaration order.
-    std::string msg = loadError({{"tint", "x"}, {"count", "x"}});
+    std::string msg = paramLoadError({{"tint", "x"}, {"count", "x"}});
     EXPECT_NE(msg.find("/params/count:"), std::string::npos) << msg;
 }
 
