@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <fstream>
 #include <memory>
 #include <vector>
 
@@ -63,10 +65,47 @@ void writePng(const std::filesystem::path& path, const ImageRGBA& image, PngEnco
 
 namespace {
 
+// OpenEXR sizes an attribute's value from the int32 in front of it before reading it: a 541-byte
+// file whose string attribute claims 842 MB made it allocate and clear 842 MB (found by the image
+// fuzz target; tests/fuzz/regressions/image/). Every attribute of every header must fit in the
+// file, which costs one pass over the header (names, types and sizes; values are skipped).
+void checkExrHeaderSizes(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    char magic[4] = {};
+    uint32_t version = 0;
+    if (!in.read(magic, 4) || std::memcmp(magic, "\x76\x2f\x31\x01", 4) != 0) return;
+    if (!in.read(reinterpret_cast<char*>(&version), 4)) return;  // OpenEXR reports it
+    const uint64_t fileSize = std::filesystem::file_size(path);
+    const bool multiPart = (version & 0x1000u) != 0;
+    auto readName = [&](std::string& name) {  // NUL-terminated, at most 255 bytes in OpenEXR
+        name.clear();
+        for (char c; in.get(c) && c != '\0';)
+            if (name.size() < 256) name.push_back(c);
+        return bool(in);
+    };
+    std::string name, type;
+    for (int headers = 0; readName(name);) {
+        if (name.empty()) {  // end of a header; a multi-part file ends with an empty header
+            if (!multiPart || in.peek() == 0 || ++headers > 1024) return;
+            continue;
+        }
+        int32_t size = 0;
+        if (!readName(type) || !in.read(reinterpret_cast<char*>(&size), 4)) return;
+        const uint64_t at = uint64_t(in.tellg());
+        if (size < 0 || at + uint64_t(size) > fileSize)
+            throw InputError(path.string(), "",
+                             "OpenEXR header attribute '" + name + "' claims " +
+                                 std::to_string(size) + " bytes at offset " + std::to_string(at) +
+                                 "; the file has " + std::to_string(fileSize));
+        in.seekg(size, std::ios::cur);
+    }
+}
+
 // Opened for reading with straight alpha kept as stored (OIIO would premultiply a PNG's colour by
 // its alpha); an unreadable file or one without pixels is an InputError naming it.
 std::unique_ptr<OIIO::ImageInput> openImage(const std::filesystem::path& path) {
     requireRegularFile(path, "image");  // OpenImageIO would block on a FIFO or /dev/zero
+    checkExrHeaderSizes(path);
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
     auto in = OIIO::ImageInput::open(path.string(), &config);

@@ -114,3 +114,19 @@ TEST_F(UserFileTest, ImageWritesOnAFullDiskAreErrorsNamingTheFile) {
 }
 
 }  // namespace
+
+// Issue 33, class 2, in OpenEXR: a 541-byte file (found by the image fuzz target) whose string
+// attribute claims 842 MB made OpenEXR allocate and clear that much before any check of ours.
+// Every header attribute must now fit in the file; the file is refused before OpenEXR sees it.
+TEST(ExrHeaderSizes, AnAttributeLargerThanTheFileIsRefusedBeforeOpenExrReadsIt) {
+    const fs::path file = fs::path(FOVEA_TEST_DIR) / "fuzz" / "regressions" / "image" /
+                          "exr_string_attribute_claims_842MB.exr";
+    const std::string message = inputErrorOf([&] { image::readImageSize(file); });
+    EXPECT_NE(message.find("attribute 'capDate' claims 842399763 bytes"), std::string::npos)
+        << message;
+    EXPECT_NE(message.find("the file has 541"), std::string::npos) << message;
+    // A valid EXR passes the same check.
+    const auto size = image::readImageSize(fs::path(FOVEA_TEST_DIR) / "goldens" /
+                                           "cornell_pathtrace" / "pt.radiance.exr");
+    EXPECT_GT(size.width, 0u);
+}
