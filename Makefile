@@ -56,7 +56,7 @@ sanitize-ci: deps
 	  -DCMAKE_CXX_FLAGS="-O0 -g1" -DFOVEA_SANITIZE=ON -DFOVEA_FUZZ=ON
 	cmake --build build-asan -j $(JOBS) --target fovea_input_tests fovea_fuzz_targets
 	cd build-asan && ASAN_OPTIONS=detect_leaks=0 ctest -R '^(input\..*($(SANITIZE_TESTS))|fuzz\.replay\.)' --output-on-failure -j $(JOBS) --timeout 900
-	bash tests/fuzz/fuzz.sh fuzz build-asan $(FUZZ_SECONDS)
+	FUZZ_SEED=1 bash tests/fuzz/fuzz.sh fuzz build-asan $(FUZZ_SECONDS)
 
 # Fuzz for longer (docs/testing.md "Fuzzing"): e.g. make fuzz FUZZ_SECONDS=1800 FUZZ_TARGETS=gltf
 FUZZ_TARGETS ?=

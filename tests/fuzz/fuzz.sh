@@ -7,7 +7,8 @@
 # Seeds come from the project (graphs/, test fixtures, tests/fuzz/seeds/) and ../shared/scenes/,
 # copied into BUILD/fuzz/seeds/TARGET. New inputs libFuzzer finds go to BUILD/fuzz/corpus/TARGET
 # (kept between runs); a crashing input is written to BUILD/fuzz/artifacts/TARGET/, and belongs in
-# tests/fuzz/regressions/TARGET/ once fixed.
+# tests/fuzz/regressions/TARGET/ once fixed. FUZZ_SEED (default 0: random) fixes libFuzzer's seed;
+# CI sets 1 so that a run's mutations, and so its verdict, depend on the code, not on chance.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
@@ -75,7 +76,7 @@ fuzz_one() {  # BUILD SECONDS TARGET
     # frequencies on targets this large (the glTF target: 13 executions/s with it, 535 without).
     ASAN_OPTIONS="$asan" LSAN_OPTIONS="suppressions=$here/lsan.supp:print_suppressions=0" \
         "$bin" -max_total_time="$seconds" -timeout=2 -rss_limit_mb=2048 -max_len=65536 \
-        -entropic=0 -print_final_stats=1 -artifact_prefix="$artifacts" "${dict[@]}" \
+        -entropic=0 -seed="${FUZZ_SEED:-0}" -print_final_stats=1 -artifact_prefix="$artifacts" "${dict[@]}" \
         "$corpus" "$seeds" "${regressions[@]}" > "$build/fuzz/fuzz-$t.log" 2>&1
 }
 
