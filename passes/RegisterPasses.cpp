@@ -11,9 +11,11 @@
 #include "passes/FoveationMask/FoveationMaskPass.h"
 #include "passes/GBuffer/GBufferPass.h"
 #include "passes/HistoryFix/HistoryFixPass.h"
+#include "passes/HmdPreview/HmdPreviewPass.h"
 #include "passes/ImageFile/ImageFilePass.h"
 #include "passes/ImageSource/ImageSourcePass.h"
 #include "passes/PathTrace/PathTracePass.h"
+#include "passes/PreviewSamples/PreviewSamplesPass.h"
 #include "passes/RecurrentBlur/RecurrentBlurPass.h"
 #include "passes/Remodulate/RemodulatePass.h"
 #include "passes/SVGF/SVGFPass.h"
@@ -71,6 +73,14 @@ void registerBuiltinPasses() {
         "SampleList",
         "Sample layout from a pattern (all, checkerboard, every n-th, seeded random fraction) with "
         "a fixed spp per pixel: a stand-in for seed 000's coordinates buffer (§3.2)."));
+    r.add(info<passes::PreviewSamplesPass>(
+        "PreviewSamples",
+        "A frame's sample budget on the 360° sphere (seed 003 P4): uniform (OD), viewport (VP) or "
+        "visual acuity around the gaze (FV, Eq. 1-7), as an equirect sample layout."));
+    r.add(info<passes::HmdPreviewPass>(
+        "HmdPreview",
+        "The HMD view of an accumulated equirect image, trilinear from its mips (seed 003 P4 "
+        "§4: no flicker near the poles)."));
     r.add(info<passes::TAAPass>(
         "TAA", "Temporal AA (Karis 2014; P2 §3): reprojected history, YCoCg clip, blend."));
     r.add(info<passes::BMFRPass>(

@@ -43,6 +43,8 @@ struct BenchSpec {
     std::string file, name;
     std::string scene, camera;  // camera: a camera path JSON, "" = the scene's still camera
     bool stereo = false;
+    // `camera_model` (or fovea bench --camera-model): "perspective", "equirect"; "" = the graphs'
+    std::string cameraModel;
     bool sun = false;  // `sun`: --sun for every graph and the reference (glTF files without lights)
     // `env`: --env, --env-intensity, --env-rotation for every graph and the reference.
     std::string env;

@@ -31,6 +31,10 @@ void addBenchCommand(CLI::App& app, BenchOptions& o) {
         ->check(userPath());
     cmd->add_option("--device", o.device, "GPU index or name substring (default: best available)")
         ->check(nonEmptyValue());
+    cmd->add_option("--camera-model", o.cameraModel,
+                    "perspective or equirect (360°, 2:1 sizes), overriding the bench file's "
+                    "camera_model")
+        ->check(CLI::IsMember({"perspective", "equirect"}));
     cmd->add_flag("--validation", o.validation, "enable the Vulkan validation layer");
     cmd->add_flag("--overwrite", o.overwrite,
                   "allow writing into a non-empty output directory (a cached rendered reference "
@@ -46,6 +50,7 @@ SceneOptions sceneOptions(const BenchSpec& spec) {
     s.camera = spec.camera;
     s.stereo = spec.stereo;
     s.mono = !spec.stereo;  // the bench decides, not the graphs' defaults
+    s.cameraModel = spec.cameraModel;
     s.sun = spec.sun;
     s.env = spec.env;
     s.envIntensity = spec.envIntensity;
@@ -97,6 +102,8 @@ fs::path prepareReference(const BenchSpec& spec, const OutputFolder& out, const 
                 {"stereo", spec.stereo}, {"size", {spec.width, spec.height}},
                 {"seed", seed},          {"frames", spec.frames},
                 {"sun", spec.sun},       {"warmup", spec.warmup}};
+    // Only when set: the keys of references cached before camera models existed stay valid.
+    if (!spec.cameraModel.empty()) key["camera_model"] = spec.cameraModel;
     // Only with an environment: the keys of references cached before `env` existed stay valid.
     if (!spec.env.empty()) key["env"] = environmentKey(sceneOptions(spec));
     const fs::path refDir = dir / folder;
@@ -288,7 +295,14 @@ BenchResult runBenchGraph(const BenchSpec& spec, const BenchGraph& g, gpu::Conte
 }  // namespace
 
 int benchCommand(const BenchOptions& o) {
-    const BenchSpec spec = parseBenchFile(o.file);
+    BenchSpec spec = parseBenchFile(o.file);
+    if (!o.cameraModel.empty()) {
+        spec.cameraModel = o.cameraModel;
+        if (o.cameraModel == "equirect" && spec.width != 2 * spec.height)
+            throw InputError("--camera-model", "",
+                             "an equirect camera needs a 2:1 image; " + spec.file + ": /size is " +
+                                 std::to_string(spec.width) + "x" + std::to_string(spec.height));
+    }
     const fs::path dir = o.out;
     checkOutputDir(dir, "--out", o.overwrite);
     // Every graph file and --set is checked before the device exists (fail fast).
@@ -369,6 +383,7 @@ int benchCommand(const BenchOptions& o) {
         {"scene", spec.scene},
         {"camera", spec.camera.empty() ? json("still") : json(spec.camera)},
         {"stereo", spec.stereo},
+        {"camera_model", spec.cameraModel.empty() ? "graph" : spec.cameraModel},
         {"sun", spec.sun},
         {"size", {spec.width, spec.height}},
         {"frames", spec.frames},

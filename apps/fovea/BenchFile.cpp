@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "apps/fovea/Bench.h"
+#include "core/scene/Camera.h"
 #include "core/util/DidYouMean.h"
 #include "core/util/Error.h"
 #include "core/util/JsonUtil.h"
@@ -156,9 +157,9 @@ BenchSpec parseBenchFile(const fs::path& file) {
     json j = parseJsonText(readUserTextFile(file, kMaxJsonFileBytes, "bench file"), name);
     Reader r(name);
     r.keys(j, "",
-           {"version", "name", "description", "scene", "camera", "size", "stereo", "sun", "env",
-            "frames", "warmup", "seed", "seeds", "output", "reference", "noise_floor",
-            "also_against", "layers", "graphs"});
+           {"version",      "name",      "description", "scene",        "camera", "size",  "stereo",
+            "camera_model", "sun",       "env",         "frames",       "warmup", "seed",  "seeds",
+            "output",       "reference", "noise_floor", "also_against", "layers", "graphs"});
     BenchSpec spec;
     spec.file = name;
     if (r.count(r.need(j, "", "version"), "/version", 1, 1) != 1) r.fail("/version", "expected 1");
@@ -174,6 +175,13 @@ BenchSpec parseBenchFile(const fs::path& file) {
         if (!j["stereo"].is_boolean()) r.fail("/stereo", "expected true or false");
         spec.stereo = j["stereo"].get<bool>();
     }
+    if (j.contains("camera_model")) {
+        spec.cameraModel = r.string(j["camera_model"], "/camera_model");
+        if (!scene::parseCameraModel(spec.cameraModel))
+            r.fail("/camera_model", "expected \"perspective\" or \"equirect\"");
+    }
+    if (spec.cameraModel == "equirect" && spec.width != 2 * spec.height)
+        r.fail("/size", "an equirect camera needs a 2:1 image (width twice the height)");
     if (j.contains("sun")) {
         if (!j["sun"].is_boolean()) r.fail("/sun", "expected true or false");
         spec.sun = j["sun"].get<bool>();

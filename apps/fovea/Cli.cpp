@@ -17,6 +17,7 @@ void addCommands(CLI::App& app, CliOptions& o) {
     addCompareCommand(app, o.compare);
     addBenchCommand(app, o.bench);
     addInspectCommand(app, o.inspect);
+    addGainCommand(app, o.gain);
 }
 
 std::string unknownSubcommand(CLI::App& app, int argc, const char* const* argv) {
@@ -42,6 +43,7 @@ int runSubcommand(const CLI::App& app, const CliOptions& o) {
     if (app.got_subcommand("compare")) return compareCommand(o.compare);
     if (app.got_subcommand("bench")) return benchCommand(o.bench);
     if (app.got_subcommand("inspect")) return inspectCommand(o.inspect);
+    if (app.got_subcommand("gain")) return gainCommand(o.gain);
     return kExitInput;
 }
 

@@ -17,6 +17,7 @@ struct CliOptions {
     CompareOptions compare;
     BenchOptions bench;
     InspectOptions inspect;
+    GainOptions gain;
 };
 
 // Adds every subcommand to `app` (which must outlive nothing but `options`).

@@ -68,6 +68,7 @@ uint32_t referenceFrames(uint32_t spp, uint32_t samplesPerFrame);
 // `fovea bench`: run time against error of several graphs (docs/bench.md).
 struct BenchOptions {
     std::string file, out, device;
+    std::string cameraModel;  // --camera-model: overrides the bench file's camera_model
     bool validation = false, overwrite = false, quiet = false;
 };
 void addBenchCommand(CLI::App& app, BenchOptions& options);
@@ -116,6 +117,19 @@ struct InspectOptions {
 };
 void addInspectCommand(CLI::App& app, InspectOptions& options);
 int inspectCommand(const InspectOptions& options);
+
+// `fovea gain`: P1's theoretical foveation gain of a display next to the samples fovea's
+// foveated layouts trace on it (docs/gain-model.md). Values are kept as text and parsed by the
+// command, so every error names its option; "" = not given.
+struct GainOptions {
+    std::string preset, fov, shape, cpd, resolution, gaze;
+    std::string measure = "flat", density = "linear";
+    std::string peresR0, peresR1, peresP = "0.5";
+    std::string vpReduction = "0.61", vpFoveaFraction = "0.24", fvBudget = "100000";
+    bool json = false;
+};
+void addGainCommand(CLI::App& app, GainOptions& options);
+int gainCommand(const GainOptions& options);
 
 // Shared by run/validate/bench: parse the graph file and apply --set overrides (each checked
 // against the pass's declared parameters, errors naming the flag).

@@ -195,7 +195,7 @@ int runCommand(const RunOptions& o) {
     std::optional<gpu::Context> device;
     RunScene scene(o.scene, desc);
     std::set<uint32_t> save = parseSaveFrames(o.saveFrames, frames);
-    scene.checkRenderSize(width);
+    scene.checkRenderSize(width, height);
     // The graph's free-text name must not pick a folder outside out/ ("../x", "/abs").
     fs::path outDir = o.out.empty() ? fs::path("out") / safeFolderName(desc.name) : fs::path(o.out);
     checkOutputDir(outDir, "--out", o.overwrite);

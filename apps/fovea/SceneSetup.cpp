@@ -69,6 +69,11 @@ void addSceneOptions(CLI::App& cmd, SceneOptions& o) {
         ->check(userPath());
     cmd.add_flag("--stereo", o.stereo, "side-by-side stereo rig (seed 000 §3.1)");
     cmd.add_flag("--mono", o.mono, "one eye, even if the graph defaults to stereo");
+    cmd.add_option("--camera-model", o.cameraModel,
+                   "perspective, or equirect: a 360° latitude-longitude camera whose image is "
+                   "2:1 (seed 003 P4; default: the camera path's camera_model, else the graph's "
+                   "defaults.camera_model, else perspective)")
+        ->check(CLI::IsMember({"perspective", "equirect"}));
     cmd.add_option("--ipd", o.ipd, "interpupillary distance in scene units (default 0.064)")
         ->check(finiteRange(0.0, 10.0));
     cmd.add_option("--gaze", o.gaze,
@@ -134,6 +139,8 @@ RunScene::RunScene(const SceneOptions& o, const graph::GraphDesc& desc) {
     mRig.ipd = o.ipd;
     mRig.jitter = o.jitter;
     if (!o.gaze.empty()) mGaze = parseGaze(o.gaze);
+    if (desc.defaults.cameraModel)
+        mRig.model = *scene::parseCameraModel(*desc.defaults.cameraModel);  // checked by the parser
     // The graph's defaults.camera was made for its default scene: with another --scene it would
     // look at nothing (an all-black image), so it is dropped with a warning.
     const std::string defaultScene = relativeToGraph(desc.defaults.scene.value_or("none"), desc);
@@ -212,11 +219,22 @@ RunScene::RunScene(const SceneOptions& o, const graph::GraphDesc& desc) {
         mPath = scene::CameraPath::still(mScene->defaultCamera());
         mCameraSource = "default";
     }
+    if (mPath && mPath->model()) mRig.model = *mPath->model();
+    if (!o.cameraModel.empty()) mRig.model = *scene::parseCameraModel(o.cameraModel);
+    if (mRig.model == scene::CameraModel::Equirect && mRig.stereo)
+        throw InputError(o.stereo ? "--stereo" : desc.file, o.stereo ? "" : "/defaults/stereo",
+                         "an equirect (360°) camera renders one eye; stereo equirect "
+                         "(top-bottom) is not supported (use --mono)");
 }
 
 RunScene::~RunScene() = default;
 
-void RunScene::checkRenderSize(uint32_t width) const {
+void RunScene::checkRenderSize(uint32_t width, uint32_t height) const {
+    if (mRig.model == scene::CameraModel::Equirect && uint64_t(width) != 2 * uint64_t(height))
+        throw InputError("--size", "",
+                         "an equirect camera covers 360° x 180° in a 2:1 image: the width must "
+                         "be twice the height, got " +
+                             std::to_string(width) + "x" + std::to_string(height));
     if (mRig.stereo && width < 2)
         throw InputError("--size", "",
                          "stereo renders two eyes of width/2 side by side: the width must be at "
@@ -226,7 +244,8 @@ void RunScene::checkRenderSize(uint32_t width) const {
 
 uint32_t RunScene::features() const {
     if (!mScene) return 0;
-    return mScene->features() | (mRig.stereo ? graph::kSceneStereo : 0u);
+    return mScene->features() | (mRig.stereo ? graph::kSceneStereo : 0u) |
+           (mRig.model == scene::CameraModel::Equirect ? graph::kSceneEquirect : 0u);
 }
 
 void RunScene::upload(gpu::Context& context) {
@@ -273,6 +292,7 @@ nlohmann::json RunScene::json() const {
                         {"features", graph::sceneFeatureNames(features())},
                         {"camera", mCameraSource},
                         {"stereo", mRig.stereo},
+                        {"camera_model", scene::cameraModelName(mRig.model)},
                         {"load_ms", mLoadMs},
                         {"warnings", mScene->warnings}};
     if (!mEnvironment.is_null()) j["environment"] = mEnvironment;

@@ -30,6 +30,9 @@ struct SceneOptions {
     // replaces the graph's scene)
     std::string camera;
     bool stereo = false, mono = false;  // --stereo / --mono override defaults.stereo
+    // --camera-model perspective|equirect; empty: the camera path's, else the graph's
+    // defaults.camera_model, else perspective.
+    std::string cameraModel;
     float ipd = 0.064f;
     std::string gaze;  // "x,y" (both eyes) or "xl,yl,xr,yr"; empty = each eye's centre
     bool jitter = false;
@@ -72,8 +75,9 @@ public:
     RunScene(const SceneOptions& options, const graph::GraphDesc& desc);
     ~RunScene();
 
-    // Throws InputError naming --size when the render width leaves an eye without pixels.
-    void checkRenderSize(uint32_t width) const;
+    // Throws InputError naming --size when the render width leaves an eye without pixels, or
+    // when an equirect camera is not 2:1.
+    void checkRenderSize(uint32_t width, uint32_t height) const;
     bool hasScene() const { return mScene != nullptr; }
     const std::string& spec() const { return mSpec; }  // "none" without a scene
     uint32_t features() const;                         // graph::SceneFeature bits (CPU side)
@@ -93,6 +97,7 @@ public:
     // The pose the camera path (or the scene's camera) gives frame `frame`.
     scene::CameraDesc cameraAt(uint64_t frame) const;
     bool stereo() const { return mRig.stereo; }
+    scene::CameraModel cameraModel() const { return mRig.model; }
 
     // The scene's entry in report.json.
     nlohmann::json json() const;

@@ -32,7 +32,7 @@ int validateCommand(const ValidateOptions& o) {
     options.aliasing = !o.graph.noAliasing;
     // The scene is loaded on the CPU only: its features decide which passes are culled.
     RunScene scene(o.scene, desc);
-    scene.checkRenderSize(width);
+    scene.checkRenderSize(width, height);
     // The same scene warnings `run` prints (no light, ignored glTF features, dropped camera).
     if (scene.hasScene()) {
         const nlohmann::json sceneJson = scene.json();  // a range-for over a temporary's member

@@ -109,6 +109,7 @@ nlohmann::ordered_json toOrderedJson(const GraphDesc& graph) {
     if (graph.defaults.scene) defaults["scene"] = *graph.defaults.scene;
     if (graph.defaults.camera) defaults["camera"] = *graph.defaults.camera;
     if (graph.defaults.stereo) defaults["stereo"] = *graph.defaults.stereo;
+    if (graph.defaults.cameraModel) defaults["camera_model"] = *graph.defaults.cameraModel;
     if (!defaults.empty()) root["defaults"] = defaults;
 
     nlohmann::ordered_json passes = nlohmann::ordered_json::array();

@@ -69,6 +69,8 @@ struct GraphDefaults {
     std::optional<std::string> scene;
     std::optional<std::string> camera;  // camera path file, relative to the graph file
     std::optional<bool> stereo;         // side-by-side stereo rig (seed 000 §3.1)
+    // "perspective" or "equirect" (the 360° camera of seed 003 P4; docs/camera-path.md)
+    std::optional<std::string> cameraModel;
     bool operator==(const GraphDefaults&) const = default;
 };
 

@@ -13,8 +13,8 @@ namespace {
 
 const std::vector<std::string> kTopFields = {
     "version", "name", "description", "defaults", "passes", "edges", "order", "outputs", "editor"};
-const std::vector<std::string> kDefaultsFields = {"size",  "frames", "seed",
-                                                  "scene", "camera", "stereo"};
+const std::vector<std::string> kDefaultsFields = {"size",   "frames", "seed",        "scene",
+                                                  "camera", "stereo", "camera_model"};
 const std::vector<std::string> kPassFields = {"name", "type", "params", "enabled"};
 const std::vector<std::string> kEdgeFields = {"from", "to", "delay"};
 const std::vector<std::string> kOrderFields = {"before", "after"};
@@ -90,6 +90,12 @@ private:
                     "the camera path is made for that scene");
         }
         if (auto stereo = node.find("stereo")) mGraph.defaults.stereo = stereo->asBool();
+        if (auto model = node.find("camera_model")) {
+            mGraph.defaults.cameraModel = model->asString();
+            if (*mGraph.defaults.cameraModel != "perspective" &&
+                *mGraph.defaults.cameraModel != "equirect")
+                model->fail("expected \"perspective\" or \"equirect\"");
+        }
     }
 
     void parsePasses(const JsonNode& node) {

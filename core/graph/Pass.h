@@ -38,6 +38,7 @@ namespace fovea::graph {
 using scene::kSceneAlpha;
 using scene::kSceneEmissive;
 using scene::kSceneEnvironment;
+using scene::kSceneEquirect;
 using scene::kSceneGeometry;
 using scene::kScenePunctual;
 using scene::kSceneStereo;

@@ -16,6 +16,12 @@ glm::dvec3 viewDirection(glm::dvec2 local, glm::dvec2 eyeSize, double tanHalf, d
 
 double pixelEccentricityDegrees(const scene::FrameCamera& camera, uint32_t width, uint32_t height,
                                 uint32_t x, uint32_t y) {
+    if (camera.model == scene::CameraModel::Equirect) {
+        const glm::vec2 size(float(std::max(width, 1u)), float(std::max(height, 1u)));
+        const glm::dvec3 a = scene::equirectDirection((glm::vec2(x, y) + 0.5f) / size);
+        const glm::dvec3 b = scene::equirectDirection(camera.eyes[0].gaze);
+        return glm::degrees(std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)));
+    }
     const uint32_t eyes = std::clamp(camera.eyeCount, 1u, scene::kMaxEyes);
     const uint32_t eyeWidth = std::max(width / eyes, 1u);
     const uint32_t eye = std::min(x / eyeWidth, eyes - 1);
@@ -92,19 +98,22 @@ std::vector<BandError> foveationLayerErrors(const image::ImageRGBA& test,
 std::vector<BandError> eccentricityBandErrors(const image::ImageRGBA& test,
                                               const image::ImageRGBA& reference,
                                               const scene::FrameCamera& camera) {
-    constexpr size_t kBands = std::size(kEccentricityBandEdges);
+    const bool equirect = camera.model == scene::CameraModel::Equirect;
+    const double* edges = equirect ? kEquirectBandEdges : kEccentricityBandEdges;
+    const size_t kBands =
+        equirect ? std::size(kEquirectBandEdges) : std::size(kEccentricityBandEdges);
     const uint32_t w = std::min(test.width, reference.width);
     const uint32_t h = std::min(test.height, reference.height);
     auto bands = regionErrors(test, reference, kBands, [&](uint32_t x, uint32_t y) {
         double e = pixelEccentricityDegrees(camera, w, h, x, y);
         size_t b = kBands - 1;
-        while (b > 0 && e < kEccentricityBandEdges[b]) --b;
+        while (b > 0 && e < edges[b]) --b;
         return b;
     });
     for (size_t b = 0; b < kBands; ++b) {
-        bands[b].fromDegrees = kEccentricityBandEdges[b];
-        bands[b].toDegrees = b + 1 < kBands ? kEccentricityBandEdges[b + 1]
-                                            : std::numeric_limits<double>::infinity();
+        bands[b].fromDegrees = edges[b];
+        bands[b].toDegrees =
+            b + 1 < kBands ? edges[b + 1] : std::numeric_limits<double>::infinity();
     }
     return bands;
 }

@@ -20,9 +20,14 @@ struct BandError {
 
 // The bands' lower edges: 0, 5 and 20 degrees (the last band is open).
 inline constexpr double kEccentricityBandEdges[] = {0.0, 5.0, 20.0};
+// With an equirect (360°) camera: seed 003 P4's foveal region split finer (0-5, 5-10, 10-20
+// degrees, issue 27), 20-80 and what lies beyond 80 degrees, where P4's acuity CDF (Eq. 6) puts no
+// sample.
+inline constexpr double kEquirectBandEdges[] = {0.0, 5.0, 10.0, 20.0, 80.0};
 
 // Eccentricity in degrees of pixel (x, y) of a width x height side-by-side image (eye width =
-// width / eyeCount), from `camera`'s yfov and each eye's gaze.
+// width / eyeCount), from `camera`'s yfov and each eye's gaze; with an equirect camera the angle
+// on the sphere between the pixel's direction and the gaze direction.
 double pixelEccentricityDegrees(const scene::FrameCamera& camera, uint32_t width, uint32_t height,
                                 uint32_t x, uint32_t y);
 

@@ -31,6 +31,34 @@ glm::mat4 safeLookAt(const glm::vec3& position, const glm::vec3& target, const g
 
 }  // namespace
 
+const char* cameraModelName(CameraModel model) {
+    return model == CameraModel::Equirect ? "equirect" : "perspective";
+}
+
+std::optional<CameraModel> parseCameraModel(const std::string& name) {
+    if (name == "perspective") return CameraModel::Perspective;
+    if (name == "equirect") return CameraModel::Equirect;
+    return std::nullopt;
+}
+
+glm::vec3 equirectDirection(glm::vec2 uv) {
+    const float pi = 3.14159265358979f;
+    const float longitude = (uv.x - 0.5f) * 2.0f * pi, latitude = (0.5f - uv.y) * pi;
+    const float c = std::cos(latitude);
+    return {c * std::sin(longitude), std::sin(latitude), -c * std::cos(longitude)};
+}
+
+glm::vec2 equirectUv(glm::vec3 d) {
+    const float pi = 3.14159265358979f;
+    const float len = glm::length(d);
+    if (!(len > 0.0f)) return glm::vec2(0.5f);  // no direction: the centre, never NaN
+    d /= len;
+    // atan2(x, -z) is defined for (0, 0) (returns 0): the poles map to u = 0.5.
+    const float longitude = std::atan2(d.x, -d.z);
+    const float latitude = std::asin(std::clamp(d.y, -1.0f, 1.0f));
+    return {longitude / (2.0f * pi) + 0.5f, 0.5f - latitude / pi};
+}
+
 EyeSplit splitEyes(uint32_t width, int eyesParam, uint32_t cameraEyes) {
     int eyes = eyesParam > 0 ? eyesParam : int(std::clamp(cameraEyes, 1u, kMaxEyes));
     if (eyes > int(width)) eyes = 1;  // a 1-pixel-wide image cannot be split
@@ -47,15 +75,20 @@ FrameCamera makeFrameCamera(const CameraDesc& camera, uint32_t width, uint32_t h
                             const FrameCamera* previous, const glm::vec2 gaze[kMaxEyes]) {
     FrameCamera out;
     out.eyeCount = rig.stereo ? 2u : 1u;
-    out.eyeWidth = std::max(1u, width / out.eyeCount);
     out.height = std::max(1u, height);
-    out.yfov = std::clamp(camera.yfov, 1e-3f, 3.1f);
+    out.model = rig.model;
+    const bool equirect = rig.model == CameraModel::Equirect;
+    if (equirect) out.eyeCount = 1;  // the CLI refuses stereo equirect; never two 360° eyes here
+    out.eyeWidth = std::max(1u, width / out.eyeCount);
+    out.yfov = equirect ? 3.14159265f : std::clamp(camera.yfov, 1e-3f, 3.1f);
     out.jitter = rig.jitter ? halton23(frameIndex % 16) - glm::vec2(0.5f) : glm::vec2(0.0f);
 
     const glm::mat4 centre = safeLookAt(camera.position, camera.target, camera.up);
     const float aspect = float(out.eyeWidth) / float(out.height);  // both >= 1
+    // Equirect has no projection matrix: viewProj = view (see CameraRigOptions::model).
     const glm::mat4 proj =
-        glm::perspectiveRH_ZO(out.yfov, aspect, std::max(camera.znear, 1e-6f), 1e6f);
+        equirect ? glm::mat4(1.0f)
+                 : glm::perspectiveRH_ZO(out.yfov, aspect, std::max(camera.znear, 1e-6f), 1e6f);
     for (uint32_t e = 0; e < out.eyeCount; ++e) {
         EyeView& eye = out.eyes[e];
         // Parallel stereo: each eye is shifted along the camera's right axis by half the IPD.
@@ -67,9 +100,9 @@ FrameCamera makeFrameCamera(const CameraDesc& camera, uint32_t width, uint32_t h
         eye.position = glm::vec3(glm::inverse(eye.view)[3]);
         eye.gaze = gaze ? glm::clamp(gaze[e], glm::vec2(0.0f), glm::vec2(1.0f)) : glm::vec2(0.5f);
         eye.offsetX = e * out.eyeWidth;
-        eye.prevViewProj = previous && previous->eyeCount == out.eyeCount
-                               ? previous->eyes[e].viewProj
-                               : eye.viewProj;
+        const bool samePrevious =
+            previous && previous->eyeCount == out.eyeCount && previous->model == out.model;
+        eye.prevViewProj = samePrevious ? previous->eyes[e].viewProj : eye.viewProj;
         eye.prevGaze =
             previous && previous->eyeCount == out.eyeCount ? previous->eyes[e].gaze : eye.gaze;
     }
@@ -85,11 +118,15 @@ void primaryRay(const FrameCamera& camera, glm::vec2 pixel, glm::vec3& origin, g
     const glm::mat4 cameraToWorld = glm::inverse(eye.view);
     const glm::vec2 local = pixel - glm::vec2(float(eye.offsetX), 0.0f);
     const glm::vec2 size(float(eyeWidth), float(std::max(camera.height, 1u)));
+    origin = eye.position;
+    if (camera.model == CameraModel::Equirect) {
+        dir = glm::normalize(glm::mat3(cameraToWorld) * equirectDirection(local / size));
+        return;
+    }
     const glm::vec2 ndc(2.0f * local.x / size.x - 1.0f, 1.0f - 2.0f * local.y / size.y);
     const float t = std::tan(0.5f * camera.yfov);
     const float aspect = size.x / size.y;
     const glm::vec3 d(ndc.x * t * aspect, ndc.y * t, -1.0f);
-    origin = eye.position;
     dir = glm::normalize(glm::mat3(cameraToWorld) * d);  // |d| >= 1 (z = -1)
 }
 

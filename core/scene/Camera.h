@@ -5,12 +5,32 @@
 #pragma once
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <optional>
+#include <string>
 
 #include "core/scene/Scene.h"
 
 namespace fovea::scene {
 
 constexpr uint32_t kMaxEyes = 2;
+
+// How pixels map to ray directions. Perspective: a pinhole with vertical FOV `yfov`.
+// Equirect: the whole sphere of directions around the eye in a 2:1 latitude-longitude image
+// (seed 003 P4 §3: 360° content is rendered "as equirectangular images"); u = 0.5 looks at the
+// camera's target, v = 0 is straight up. See docs/camera-path.md "Camera models".
+enum class CameraModel : uint32_t { Perspective = 0, Equirect = 1 };
+
+// "perspective" / "equirect"; parseCameraModel returns nullopt for anything else.
+const char* cameraModelName(CameraModel model);
+std::optional<CameraModel> parseCameraModel(const std::string& name);
+
+// The unit direction, in the camera's frame (-Z forward, +Y up, +X right), of the point `uv` in
+// [0,1]^2 of an equirect image: longitude (u - 0.5) * 2π, latitude (0.5 - v) * π. Same formula as
+// cameraRay in shaders/common/camera.glsl.
+glm::vec3 equirectDirection(glm::vec2 uv);
+// The inverse: uv in [0,1]^2 of a camera-frame direction (any length > 0; the zero vector maps to
+// the image centre).
+glm::vec2 equirectUv(glm::vec3 direction);
 
 struct EyeView {
     glm::mat4 view{1.0f}, proj{1.0f};
@@ -28,7 +48,8 @@ struct FrameCamera {
     uint32_t eyeWidth = 0, height = 0;  // per-eye image size in pixels
     glm::vec2 jitter{0.0f};             // sub-pixel offset in pixels, in [-0.5, 0.5)^2
     bool cut = false;                   // history must not be reused this frame
-    float yfov = 0.8f;
+    float yfov = 0.8f;                  // perspective only (equirect: π, its vertical extent)
+    CameraModel model = CameraModel::Perspective;
 };
 
 // Stereo and jitter options of a run.
@@ -36,6 +57,10 @@ struct CameraRigOptions {
     bool stereo = false;
     float ipd = 0.064f;  // interpupillary distance in scene units (metres for most glTF files)
     bool jitter = false;
+    // Equirect: one eye (stereo is refused by the CLI); viewProj is the view matrix alone, so
+    // prevViewProj * p is the previous camera-frame position (camera.glsl's
+    // cameraPreviousPixel maps it back to the sphere).
+    CameraModel model = CameraModel::Perspective;
 };
 
 // How a side-by-side image `width` pixels wide splits into eyes, for passes that keep their taps

@@ -18,8 +18,11 @@ CameraInfo packCamera(const FrameCamera& camera, uint64_t frameIndex, uint64_t f
     }
     out.size = {camera.eyeWidth, camera.height, camera.eyeCount, camera.cut ? 1u : 0u};
     const float aspect = camera.height > 0 ? float(camera.eyeWidth) / float(camera.height) : 1.0f;
-    out.jitter = {camera.jitter, std::tan(0.5f * camera.yfov), aspect};
-    out.frame = {uint32_t(frameIndex), uint32_t(framesSinceReset), 0u, 0u};
+    // Equirect: yfov = π has no finite tangent; 1 (a 90° view) keeps the passes that scale by it
+    // (hit-distance normalization) finite. Rays and reprojection branch on frame.z instead.
+    const bool equirect = camera.model == CameraModel::Equirect;
+    out.jitter = {camera.jitter, equirect ? 1.0f : std::tan(0.5f * camera.yfov), aspect};
+    out.frame = {uint32_t(frameIndex), uint32_t(framesSinceReset), uint32_t(camera.model), 0u};
     return out;
 }
 

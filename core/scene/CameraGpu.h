@@ -22,7 +22,7 @@ struct CameraInfo {
     CameraEye eyes[kMaxEyes];
     glm::uvec4 size;   // x eye width, y height, z eye count, w cut (0/1)
     glm::vec4 jitter;  // xy sub-pixel jitter in pixels; z tan(yfov/2); w eye aspect (w/h)
-    glm::uvec4 frame;  // x frame index (low 32 bits), y frames since reset (low 32), zw unused
+    glm::uvec4 frame;  // x frame index (low 32 bits), y frames since reset (low 32), z model, w 0
 };
 
 static_assert(sizeof(CameraEye) == 224);

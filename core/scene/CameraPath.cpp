@@ -55,7 +55,8 @@ CameraPath CameraPath::still(const CameraDesc& camera) {
 
 CameraPath CameraPath::fromJson(const nlohmann::json& j, const std::string& file) {
     JsonNode root(j, file);
-    root.expectObject().checkFields({"version", "description", "loop", "keyframes"});
+    root.expectObject().checkFields(
+        {"version", "description", "loop", "camera_model", "keyframes"});
     int64_t version = root.require("version").asInt();
     if (version != kCameraPathVersion)
         root.require("version").fail("unsupported camera path version " + std::to_string(version) +
@@ -63,6 +64,10 @@ CameraPath CameraPath::fromJson(const nlohmann::json& j, const std::string& file
                                      std::to_string(kCameraPathVersion) + ")");
     CameraPath path;
     if (auto loop = root.find("loop")) path.mLoop = loop->asBool();
+    if (auto model = root.find("camera_model")) {
+        path.mModel = parseCameraModel(model->asString());
+        if (!path.mModel) model->fail("expected \"perspective\" or \"equirect\"");
+    }
     JsonNode keys = root.require("keyframes");
     if (keys.size() == 0) keys.fail("a camera path needs at least one keyframe");
     for (const JsonNode& k : keys.elements()) {

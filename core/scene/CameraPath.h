@@ -43,11 +43,14 @@ public:
 
     const std::vector<CameraKey>& keys() const { return mKeys; }
     bool loops() const { return mLoop; }
+    // The path's "camera_model", if it names one (a run's --camera-model overrides it).
+    std::optional<CameraModel> model() const { return mModel; }
     uint64_t length() const;  // frames from the first to the last key, + 1
 
 private:
     std::vector<CameraKey> mKeys;  // sorted by frame, strictly increasing
     bool mLoop = false;
+    std::optional<CameraModel> mModel;
 };
 
 }  // namespace fovea::scene

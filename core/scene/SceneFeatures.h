@@ -17,10 +17,11 @@ enum SceneFeature : uint32_t {
     kSceneStereo = 1u << 4,       // a stereo camera rig
     kSceneEnvironment = 1u << 5,  // an environment map that emits (--env)
     kSceneAlpha = 1u << 6,        // materials with alphaMode MASK (cutoff > 0) or BLEND
+    kSceneEquirect = 1u << 7,     // a 360° equirect camera (CameraModel::Equirect)
 };
 
 // "geometry", "emissive", "textures", "punctual-lights", "stereo", "environment",
-// "alpha" for the set bits.
+// "alpha", "equirect" for the set bits.
 std::vector<std::string> sceneFeatureNames(uint32_t mask);
 
 }  // namespace fovea::scene

@@ -8,6 +8,12 @@ void AccumulatePass::params(graph::ParamVisitor& v) {
     v.add("maxFrames", mMaxFrames, 0,
           "stop accumulating after this many frames (0 = never stop); the mean then stays",
           {0, 1 << 30});
+    v.add("weight", mWeight, "frame",
+          "frame: every frame counts once (a full image per frame); alpha: the input's alpha is "
+          "the number of samples its value averages (PathTrace's radiance), added to the count, "
+          "and a pixel with alpha 0 keeps its mean: progressive accumulation of scattered samples "
+          "(seed 003 P4 §3, sum + count per texel)",
+          {"frame", "alpha"});
 }
 
 void AccumulatePass::reflect(graph::Reflection& r) const {
@@ -17,10 +23,10 @@ void AccumulatePass::reflect(graph::Reflection& r) const {
         .sameAs("color")
         .persistent()
         .doc("running mean of every finite sample since the last reset");
-    r.internal("count", vk::Format::eR32Sfloat)
+    r.output("count", vk::Format::eR32Sfloat)
         .sameAs("color")
         .persistent()
-        .doc("per-pixel number of finite samples");
+        .doc("per-pixel number of finite samples (weight alpha: the sum of their alphas)");
 }
 
 void AccumulatePass::compile(graph::CompileContext& ctx) {
@@ -39,7 +45,9 @@ void AccumulatePass::execute(graph::ExecuteContext& ctx) {
     ++mCount;
     const auto& out = ctx.image("mean");
     ctx.bindFields(*mPipeline);
-    mPipeline->set("size", glm::ivec2(out.width(), out.height())).set("restart", int(restart));
+    mPipeline->set("size", glm::ivec2(out.width(), out.height()))
+        .set("restart", int(restart))
+        .set("alphaWeight", int(mWeight == "alpha"));
     mPipeline->dispatch(ctx.cmd(), out.width(), out.height());
 }
 

@@ -17,6 +17,7 @@ public:
 
 private:
     int mMaxFrames = 0;
+    std::string mWeight;
     int mCount = 0;
     std::unique_ptr<gpu::ComputePipeline> mPipeline;
 };

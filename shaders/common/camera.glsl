@@ -21,8 +21,31 @@ layout(std140, binding = 26) uniform CameraInfo {
     CameraEye eyes[2];
     uvec4 size;    // x eye width, y height, z eye count, w cut
     vec4 jitter;   // xy jitter (pixels), z tan(yfov / 2), w eye aspect
-    uvec4 frame;   // x frame index, y frames since reset
+    uvec4 frame;   // x frame index, y frames since reset, z model (0 perspective, 1 equirect)
 } camera_info;
+
+const float kCameraPi = 3.14159265358979;
+
+// Equirect model (Camera.h CameraModel): the whole sphere in a 2:1 latitude-longitude image.
+bool cameraIsEquirect() { return camera_info.frame.z == 1u; }
+
+// Camera-frame direction of uv in [0,1]^2 of an equirect image: longitude (u - 0.5) 2π about +Y
+// (u = 0.5 looks down -Z), latitude (0.5 - v) π. Unit length by construction.
+vec3 cameraEquirectDirection(vec2 uv) {
+    float longitude = (uv.x - 0.5) * 2.0 * kCameraPi, latitude = (0.5 - uv.y) * kCameraPi;
+    return vec3(cos(latitude) * sin(longitude), sin(latitude), -cos(latitude) * cos(longitude));
+}
+
+// The inverse (Camera.cpp equirectUv). GLSL leaves atan(0, 0) undefined, so the poles (x = z = 0)
+// take longitude 0 explicitly; the zero vector maps to the centre.
+vec2 cameraEquirectUv(vec3 d) {
+    float len = length(d);
+    if (len <= 1e-30) return vec2(0.5);
+    d /= len;  // guarded above
+    float longitude = (abs(d.x) + abs(d.z) > 0.0) ? atan(d.x, -d.z) : 0.0;
+    float latitude = asin(clamp(d.y, -1.0, 1.0));
+    return vec2(longitude / (2.0 * kCameraPi) + 0.5, 0.5 - latitude / kCameraPi);
+}
 
 uint cameraEyeCount() { return camera_info.size.z; }
 uvec2 cameraEyeSize() { return camera_info.size.xy; }
@@ -38,10 +61,14 @@ void cameraRay(uint eye, vec2 pixel, out vec3 origin, out vec3 direction) {
     CameraEye e = camera_info.eyes[eye];
     vec2 local = pixel - vec2(e.position.w, 0.0);
     vec2 size = vec2(camera_info.size.xy);  // >= 1 each
+    origin = e.position.xyz;
+    if (cameraIsEquirect()) {
+        direction = normalize(mat3(e.cameraToWorld) * cameraEquirectDirection(local / size));
+        return;  // a rotation of a unit vector: the normalize only removes rounding
+    }
     vec2 ndc = vec2(2.0 * local.x / size.x - 1.0, 1.0 - 2.0 * local.y / size.y);
     float t = camera_info.jitter.z;
     vec3 d = vec3(ndc.x * t * camera_info.jitter.w, ndc.y * t, -1.0);
-    origin = e.position.xyz;
     direction = normalize(mat3(e.cameraToWorld) * d);  // |d| >= 1 (z = -1)
 }
 
@@ -50,6 +77,11 @@ void cameraRay(uint eye, vec2 pixel, out vec3 origin, out vec3 direction) {
 bool cameraPreviousPixel(uint eye, vec3 p, out vec2 pixel) {
     CameraEye e = camera_info.eyes[eye];
     vec4 clip = e.prevViewProj * vec4(p, 1.0);
+    if (cameraIsEquirect()) {  // prevViewProj is the previous view matrix: clip.xyz is view space
+        if (dot(clip.xyz, clip.xyz) <= 1e-20) { pixel = vec2(-1.0); return false; }
+        pixel = cameraEquirectUv(clip.xyz) * vec2(camera_info.size.xy) + vec2(e.position.w, 0.0);
+        return true;
+    }
     if (clip.w <= 1e-6) { pixel = vec2(-1.0); return false; }  // guards the division below
     vec2 ndc = clip.xy / clip.w;
     vec2 size = vec2(camera_info.size.xy);
@@ -57,9 +89,11 @@ bool cameraPreviousPixel(uint eye, vec3 p, out vec2 pixel) {
     return true;
 }
 
-// Linear view depth of `p` (distance along the eye's viewing axis, positive in front).
+// Linear view depth of `p` (distance along the eye's viewing axis, positive in front); for the
+// equirect model, which has no single axis, the distance from the eye.
 float cameraViewDepth(uint eye, vec3 p) {
     CameraEye e = camera_info.eyes[eye];
+    if (cameraIsEquirect()) return length(p - e.position.xyz);
     return dot(p - e.position.xyz, -e.cameraToWorld[2].xyz);
 }
 
