@@ -17,7 +17,7 @@ Thresholds: OD's error in the band after 2 and after 16 samples per texel (so OD
 not reach a threshold within the run is reported as "> N".
 
 Usage: scripts/preview_curves.py OUT [--fovea build/fovea] [--frames 96] [--budget 25000]
-                                     [--size 512x256] [--spp 1024] [--scenes cornell,forest]
+                                     [--size 512x256] [--spp 512] [--scenes cornell,forest]
 Only Python's standard library; the fovea runs are the cost (about 10 minutes on 2 CPU cores).
 """
 import argparse
@@ -131,7 +131,7 @@ def main():
     p.add_argument("--frames", type=int, default=96)
     p.add_argument("--budget", type=int, default=25000)
     p.add_argument("--size", default="512x256")
-    p.add_argument("--spp", type=int, default=1024)
+    p.add_argument("--spp", type=int, default=512)
     p.add_argument("--scenes", default="cornell,forest")
     args = p.parse_args()
     w, h = (int(v) for v in args.size.split("x"))

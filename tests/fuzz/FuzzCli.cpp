@@ -1,7 +1,10 @@
 // The command line (`fovea ARGS...`): one argument per line of the input. CLI11's parse with every
 // subcommand, flag and validator main() has (apps/fovea/Cli.h), the unknown-subcommand message,
 // then the checks a command makes before it touches the device or writes a file: the graph file
-// with its --set overrides (loadGraph) and the render and window sizes. Nothing is run or written.
+// with its --set overrides (loadGraph) and the render and window sizes, and all of `gain` (CPU
+// only, its output discarded). Nothing is rendered or written.
+#include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -52,6 +55,18 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         if (app.got_subcommand("run")) checkGraphOptions(o.run.graph);
         if (app.got_subcommand("reference")) checkGraphOptions(o.reference.run.graph);
         if (app.got_subcommand("validate")) checkGraphOptions(o.validate.graph);
+        // gain needs no device: the whole command runs, its printout discarded.
+        if (app.got_subcommand("gain")) {
+            std::ostringstream sink;
+            std::streambuf* saved = std::cout.rdbuf(sink.rdbuf());
+            try {
+                (void)app::gainCommand(o.gain);
+            } catch (...) {
+                std::cout.rdbuf(saved);
+                throw;
+            }
+            std::cout.rdbuf(saved);
+        }
         if (app.got_subcommand("inspect")) {
             checkGraphOptions(o.inspect.graph);
             (void)app::parseSize(o.inspect.window, "--window");

@@ -118,3 +118,19 @@ TEST(CliPreview, ReferenceErrorsUseSphericalBandsAndFavourTheFovea) {
     }
     EXPECT_LT(fovea["preview_fv"], 0.5 * fovea["preview_od"]);
 }
+
+TEST(CliPreview, BenchChecksTheEquirectSize) {
+    TempDir dir;
+    const fs::path bench = dir / "bench.json";
+    writeText(bench, R"({ "version": 1, "scene": "builtin:cornell", "camera_model": "equirect",
+        "size": [64, 64], "frames": 2, "reference": { "render": { "graph": ")" +
+                         (kRepo / "graphs" / "reference.json").generic_string() +
+                         R"(", "output": "acc.mean", "spp": 4 } }, "graphs": [ { "file": ")" +
+                         kPreviewGraphs[2].generic_string() + R"(" } ] })");
+    expectInputError(cli({"bench", bench.string(), "--out", (dir / "out").string()}),
+                     {"bench.json", "/size", "2:1"});
+    // The shipped preview bench is 2:1; forcing equirect onto a square bench file is refused too.
+    expectInputError(cli({"bench", (kRepo / "graphs" / "benches" / "demo_spp.json").string(),
+                          "--camera-model", "equirect", "--out", (dir / "out2").string()}),
+                     {"--camera-model", "2:1", "128x128"});
+}

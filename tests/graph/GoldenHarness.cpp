@@ -16,6 +16,7 @@
 #include "core/graph/PassRegistry.h"
 #include "core/graph/RenderGraph.h"
 #include "core/scene/Camera.h"
+#include "core/scene/CameraPath.h"
 #include "core/scene/SceneGpu.h"
 #include "core/scene/SceneLoader.h"
 #include "core/vk/Context.h"
@@ -163,6 +164,7 @@ json identity(const GoldenSpec& spec, const RenderedOutput& out, uint64_t seed) 
     if (!spec.scene.empty()) {
         id["scene"] = spec.scene;
         id["stereo"] = spec.stereo;
+        if (!spec.cameraPath.empty()) id["camera"] = spec.cameraPath;
     }
     if (!spec.params.empty()) id["params"] = spec.params;
     return id;
@@ -397,23 +399,47 @@ std::vector<RenderedOutput> renderGraphOutputs(gpu::Context& ctx, const GoldenSp
     std::unique_ptr<scene::SceneGpu> sceneGpu;
     scene::CameraRigOptions rig;
     rig.stereo = spec.stereo;
+    std::optional<scene::CameraPath> path;
+    if (!spec.cameraPath.empty()) {
+        path = scene::CameraPath::load(repositoryRoot() / spec.cameraPath);
+        rig.model = path->model().value_or(scene::CameraModel::Perspective);
+    }
     if (!spec.scene.empty()) {
         const bool builtin = spec.scene.rfind("builtin:", 0) == 0;
         sceneData = std::make_unique<scene::Scene>(
             scene::loadScene(builtin ? spec.scene : (repositoryRoot() / spec.scene).string()));
         sceneGpu = std::make_unique<scene::SceneGpu>(ctx, *sceneData);
-        options.sceneFeatures = sceneGpu->features() | (spec.stereo ? graph::kSceneStereo : 0u);
+        options.sceneFeatures =
+            sceneGpu->features() | (spec.stereo ? graph::kSceneStereo : 0u) |
+            (rig.model == scene::CameraModel::Equirect ? graph::kSceneEquirect : 0u);
     }
     const scene::CameraDesc camera = !sceneData                   ? scene::CameraDesc{}
                                      : sceneData->cameras.empty() ? sceneData->defaultCamera()
                                                                   : sceneData->cameras.front();
     graph::RenderGraph graph(ctx, graph::passRegistry());
     graph.setScene(sceneGpu.get());
-    graph.setCamera(
-        scene::makeFrameCamera(camera, spec.width, spec.height, rig, 0, nullptr, nullptr));
+    // The camera of frame f: the path's (pose and gaze), else the scene's, still.
+    std::optional<scene::FrameCamera> previous;
+    auto cameraOf = [&](uint32_t f) {
+        if (!path)
+            return scene::makeFrameCamera(camera, spec.width, spec.height, rig, f, nullptr,
+                                          nullptr);
+        const scene::CameraSample sample = path->at(f);
+        const auto gaze = sample.gaze.value_or(
+            std::array<glm::vec2, scene::kMaxEyes>{glm::vec2(0.5f), glm::vec2(0.5f)});
+        scene::FrameCamera c =
+            scene::makeFrameCamera(sample.camera, spec.width, spec.height, rig, f,
+                                   previous ? &*previous : nullptr, gaze.data());
+        previous = c;
+        return c;
+    };
+    graph.setCamera(cameraOf(0));
     graph.build(desc, options);
     graph.setSeed(seedUsed);
-    for (uint32_t f = 0; f < spec.frames; ++f) graph.runFrame();
+    for (uint32_t f = 0; f < spec.frames; ++f) {
+        if (f > 0) graph.setCamera(cameraOf(f));
+        graph.runFrame();
+    }
     std::vector<RenderedOutput> outputs;
     const auto& plan = graph.plan();
     for (const auto& out : desc.outputs) {

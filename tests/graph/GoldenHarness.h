@@ -76,6 +76,9 @@ struct GoldenSpec {
     // pair. Empty: no scene. Both are part of the golden's identity when a scene is set.
     std::string scene;
     bool stereo = false;
+    // A camera path file relative to the repository root (its camera, gaze and camera model per
+    // frame) instead of the scene's camera; part of the identity when set.
+    std::string cameraPath;
     // Parameter overrides { "pass": { "param": value } } applied to the graph file (like
     // `fovea run --set`), e.g. foveation radii scaled to the small test size. Part of the
     // golden's identity when set.

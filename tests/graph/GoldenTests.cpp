@@ -55,6 +55,22 @@ GoldenSpec cornellGolden(const std::string& name, const std::string& graph, bool
 
 // --- the goldens ------------------------------------------------------------------------------
 
+// Seed 003 P3/P4's three preview methods (graphs/preview_*.json) on the Cornell box from inside,
+// with the graphs' own equirect camera path (the gaze moves), 128x64, 3 frames of 2000 samples,
+// the HMD view 48x48: equal budgets, different distributions, all bit-reproducible.
+TEST_F(GoldenTest, Preview) {
+    for (const std::string method : {"od", "vp", "fv"}) {
+        GoldenSpec spec = golden("preview_" + method, "graphs/preview_" + method + ".json");
+        spec.scene = "builtin:cornell";
+        spec.cameraPath = "graphs/cameras/cornell_360.json";
+        spec.width = 128;
+        spec.height = 64;
+        spec.params = {{"samples", {{"budget", 2000}}},
+                       {"preview", {{"width", 48}, {"height", 48}}}};
+        EXPECT_TRUE(fovea::test::goldenMatches(ctx(), spec)) << method;
+    }
+}
+
 TEST_F(GoldenTest, Demo) {
     // Seeded noise accumulated over 3 frames (acc.mean) and an ACES-tonemapped gradient (tm.ldr).
     EXPECT_TRUE(
