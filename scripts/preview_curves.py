@@ -3,8 +3,9 @@
 
 For each scene: a converged equirect reference (`fovea reference`), then the three preview graphs
 (OD, VP, FV) with the same per-frame sample budget and `run --reference`, which reports the RMSE
-of the accumulated equirect image (acc.mean) per eccentricity band around the gaze on the sphere
-(0-5, 5-10, 10-20, 20-80, 80+ degrees). From the per-frame errors it writes:
+of the accumulated equirect image as displayed (tm.ldr, ACES-tone-mapped like the reference's
+tm.ldr; display-space errors as seed 000 Table 4, so that a rare firefly does not dominate a band)
+per eccentricity band around the gaze on the sphere (0-5, 5-10, 10-20, 20-80, 80+ degrees). From the per-frame errors it writes:
 
   OUT/preview_curves.md   the time (samples) each method needs to reach two error thresholds per
                           band - stand-ins for P4's "visible outline" and "visible material"
@@ -53,7 +54,7 @@ def reference(args, out, scene, camera):
              "--size", args.size, "--spp", str(args.spp), "--out", folder, "--overwrite",
              "--quiet"])
         json.dump(want, open(key, "w"))
-    exrs = [f for f in os.listdir(folder) if f.startswith("acc.mean") and f.endswith(".exr")]
+    exrs = [f for f in os.listdir(folder) if f.startswith("tm.ldr") and f.endswith(".exr")]
     return os.path.join(folder, sorted(exrs)[-1])
 
 
@@ -62,7 +63,7 @@ def measure(args, out, scene, camera, ref, method):
     run([args.fovea, "run", os.path.join(REPO, "graphs", "preview_%s.json" % method), "--scene",
          scene, "--camera", os.path.join(REPO, camera), "--size", args.size, "--frames",
          str(args.frames), "--set", "samples.budget=%d" % args.budget, "--reference", ref,
-         "--reference-output", "acc.mean", "--out", folder, "--overwrite", "--quiet"])
+         "--reference-output", "tm.ldr", "--out", folder, "--overwrite", "--quiet"])
     report = json.load(open(os.path.join(folder, "report.json")))
     errors = [[b["rmse"] for b in f["bands"]] for f in report["reference"]["frames"]]
     passes = {p["name"]: p["gpu_ms"]["median"] for p in report["passes"] if "gpu_ms" in p}

@@ -39,10 +39,12 @@ void HmdPreviewPass::params(graph::ParamVisitor& v) {
 }
 
 void HmdPreviewPass::reflect(graph::Reflection& r) const {
-    r.input("equirect", vk::Format::eR32G32B32A32Sfloat)
+    r.input("equirect")
+        .floatOnly()
         .doc(
-            "the accumulated 2:1 equirect image (Accumulate's mean; a = 0 where no sample "
-            "landed, shown black: P4 does not reconstruct them)");
+            "the 2:1 equirect image, any float or normalized format: Accumulate's mean (a = 0 "
+            "where no sample landed, shown black: P4 does not reconstruct them) or its "
+            "tone-mapped display colour");
     r.output("view", vk::Format::eR32G32B32A32Sfloat)
         .fixed(uint32_t(mWidth * mEyes), uint32_t(mHeight))
         .doc("the HMD view, eyes side by side; a = filtered coverage");
