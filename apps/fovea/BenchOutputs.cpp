@@ -1,6 +1,7 @@
 // The tables of `fovea bench`: bench.json (everything), bench.csv (one row per graph) and
 // bench.md (the summary and the per-pass breakdown), docs/bench.md.
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "apps/fovea/Bench.h"
@@ -54,10 +55,46 @@ const char* const kBandFigures[] = {"rmse_0_5deg", "rmse_5_20deg", "rmse_20deg_p
 const char* const kLayerFigures[] = {"rmse_percent_fovea", "rmse_percent_middle",
                                      "rmse_percent_outer"};
 
-// The mean RMSE of the three eccentricity bands (FrameErrors' "bands"; NaN when absent).
-std::vector<double> bandRmse(const json& errors) {
-    std::vector<double> out;
-    for (const char* f : kBandFigures) out.push_back(benchFigure(errors, f));
+// The eccentricity bands the errors hold, from the first result's mean: {markdown label, csv
+// column}. A perspective camera gives 0-5, 5-20, 20+ degrees (rmse_0_5deg, rmse_5_20deg,
+// rmse_20deg_plus); an equirect one 0-5, 5-10, 10-20, 20-80, 80+ (EccentricityBands.h). Without
+// any errors the perspective three, so the csv header keeps its columns.
+std::vector<std::pair<std::string, std::string>> bandColumns(
+    const std::vector<BenchResult>& results) {
+    std::vector<std::pair<std::string, std::string>> out;
+    const json* bands = nullptr;
+    if (!results.empty() && results.front().errors.contains("mean") &&
+        results.front().errors["mean"].contains("bands"))
+        bands = &results.front().errors["mean"]["bands"];
+    auto number = [](double v) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%g", v);
+        return std::string(text);
+    };
+    if (bands && bands->is_array() && !bands->empty()) {
+        for (const auto& b : *bands) {
+            const std::string from = number(b.at("from").get<double>());
+            if (b.at("to").is_null()) {
+                out.push_back({from + "+ deg", "rmse_" + from + "deg_plus"});
+            } else {
+                const std::string to = number(b.at("to").get<double>());
+                out.push_back({from + "-" + to + " deg", "rmse_" + from + "_" + to + "deg"});
+            }
+        }
+        return out;
+    }
+    return {
+        {"0-5 deg", kBandFigures[0]}, {"5-20 deg", kBandFigures[1]}, {"20+ deg", kBandFigures[2]}};
+}
+
+// The mean RMSE of each of `count` eccentricity bands (FrameErrors' "bands"; NaN when absent).
+std::vector<double> bandRmse(const json& errors, size_t count) {
+    std::vector<double> out(count, std::nan(""));
+    if (!errors.contains("mean") || !errors["mean"].contains("bands")) return out;
+    const json& bands = errors["mean"]["bands"];
+    for (size_t b = 0; b < count && b < bands.size(); ++b)
+        if (bands[b].contains("rmse") && bands[b]["rmse"].is_number())
+            out[b] = bands[b]["rmse"].get<double>();
     return out;
 }
 
@@ -155,8 +192,11 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
                       const std::vector<BenchResult>& results) {
     std::ostringstream c;
     const json* floor = floorOf(header, "reference");
+    const auto bandColumnList = bandColumns(results);
     c << "label,file,output,frame_ms_median,frame_ms_mean,speedup,rmse_percent,rmse,rel_mse,"
-         "psnr_db,ssim,temporal_error,rmse_0_5deg,rmse_5_20deg,rmse_20deg_plus,"
+         "psnr_db,ssim,temporal_error";
+    for (const auto& column : bandColumnList) c << "," << column.second;
+    c << ","
          "rmse_percent_noise_floor,rmse_percent_above_noise,worst_frame,worst_rmse_percent,"
          "rmse_percent_fovea,rmse_percent_middle,rmse_percent_outer,pareto";
     for (const auto& a : results.front().against)
@@ -172,7 +212,8 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
           << "," << benchNumber(m.rmse, "%.6g") << "," << benchNumber(m.relMse, "%.6g") << ","
           << benchNumber(m.psnr, "%.6g") << "," << benchNumber(m.ssim, "%.6g") << ","
           << benchNumber(r.temporalError, "%.6g");
-        for (double v : bandRmse(r.errors)) c << "," << benchNumber(v, "%.6g");
+        for (double v : bandRmse(r.errors, bandColumnList.size()))
+            c << "," << benchNumber(v, "%.6g");
         const auto [worstFrame, worstPercent] = worstOf(r.errors);
         c << "," << benchNumber(floor ? meanOf(*floor, "rmse_percent") : std::nan(""), "%.6g")
           << "," << benchNumber(correctedPercent(r.errors, floor), "%.6g") << "," << worstFrame
@@ -239,14 +280,23 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
         errorTable(t, header, results, label, errors);
     }
     t << "\n## RMSE per eccentricity band (degrees from the gaze; mean over measured frames)\n\n"
-      << "| Graph | 0-5 deg | 5-20 deg | 20+ deg |\n|---|---:|---:|---:|\n";
+      << "| Graph |";
+    for (const auto& column : bandColumnList) t << " " << column.first << " |";
+    t << "\n|---|";
+    for (size_t b = 0; b < bandColumnList.size(); ++b) t << "---:|";
+    t << "\n";
     for (const auto& r : results) {
         t << "| " << benchMarkdown(r.graph.label);
-        const auto bands = bandRmse(r.errors);
+        const auto bands = bandRmse(r.errors, bandColumnList.size());
+        // Standard errors over seeds are kept for the perspective bands only (BenchSeeds.cpp
+        // names them by index as 0-5, 5-20, 20+).
+        const bool seedFigures = bandColumnList.size() == std::size(kBandFigures) &&
+                                 bandColumnList[1].second == kBandFigures[1];
         for (size_t b = 0; b < bands.size(); ++b)
             t << " | " << benchNumber(bands[b], "%.5f")
-              << (std::isnan(bands[b]) ? ""
-                                       : standardErrorSuffix(r.errors, kBandFigures[b], "%.5f"));
+              << (std::isnan(bands[b]) || !seedFigures
+                      ? ""
+                      : standardErrorSuffix(r.errors, kBandFigures[b], "%.5f"));
         t << " |\n";
     }
     seedTables(t, results);
