@@ -51,6 +51,12 @@ void FoveationMaskPass::reflect(graph::Reflection& r) const {
 }
 
 void FoveationMaskPass::validate(const graph::ValidateContext& ctx) const {
+    // The layers are discs around the gaze in a pinhole image (seed 000 §3.2); on a 360° image a
+    // pixel radius means nothing (docs/camera-path.md "Camera models").
+    if (ctx.sceneFeatures() & graph::kSceneEquirect)
+        ctx.fail("radiusUnit",
+                 "FoveationMask needs a perspective camera, not --camera-model equirect (360° "
+                 "foveation is PreviewSamples' method foveated)");
     if (!std::isfinite(mR0) || !std::isfinite(mR1)) ctx.fail("r0", "r0 and r1 must be finite");
     if (mR1 < mR0)
         ctx.fail("r1", std::to_string(mR1) + " is smaller than r0 = " + std::to_string(mR0));

@@ -45,6 +45,10 @@ void VisualPolarWarpPass::reflect(graph::Reflection& r) const {
 }
 
 void VisualPolarWarpPass::validate(const graph::ValidateContext& ctx) const {
+    // P5's mapping is defined on the screen of a pinhole camera (its dMax, its pixel rays).
+    if (ctx.sceneFeatures() & graph::kSceneEquirect)
+        ctx.fail("reduction",
+                 "VisualPolarWarp needs a perspective camera, not --camera-model equirect");
     if (!std::isfinite(mReduction)) ctx.fail("reduction", "must be finite");
     if (!std::isfinite(mFoveaFraction)) ctx.fail("foveaFraction", "must be finite");
 }

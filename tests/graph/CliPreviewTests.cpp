@@ -134,3 +134,13 @@ TEST(CliPreview, BenchChecksTheEquirectSize) {
                           "--camera-model", "equirect", "--out", (dir / "out2").string()}),
                      {"--camera-model", "2:1", "128x128"});
 }
+
+// The pinhole-only foveation passes refuse an equirect camera with the parameter's pointer
+// instead of computing discs and polar grids on a 360° image.
+TEST(CliPreview, PinholeFoveationPassesRefuseAnEquirectCamera) {
+    for (const char* graph : {"peres_nh3ld.json", "koskela_vp_bmfr.json"}) {
+        const Result r = cli({"validate", (kRepo / "graphs" / graph).string(), "--camera-model",
+                              "equirect", "--mono", "--size", "64x32"});
+        expectInputError(r, {graph, "/params/", "perspective camera"});
+    }
+}
