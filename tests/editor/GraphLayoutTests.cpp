@@ -6,6 +6,7 @@
 
 #include "core/graph/CompilerStages.h"
 #include "core/graph/PassRegistry.h"
+#include "core/scene/SceneFeatures.h"
 #include "editor/GraphLayout.h"
 #include "editor/PreviewImage.h"
 #include "passes/RegisterPasses.h"
@@ -30,8 +31,14 @@ graph::CompiledPlan compile(const fs::path& file) {
     graph::CompileOptions options;
     options.width = 64;
     options.height = 64;
-    options.sceneFeatures = ~0u;  // as with a scene that has everything: nothing culled for it
-    return graph::compileGraphPlan(graph::parseGraphFile(file), graph::passRegistry(), options);
+    const graph::GraphDesc desc = graph::parseGraphFile(file);
+    // As with a scene that has everything (nothing culled for it), seen through the graph's
+    // camera model: a pinhole unless its defaults say equirect (the 360° preview graphs), since
+    // the foveation passes refuse a 360° camera and PreviewSamples a pinhole.
+    options.sceneFeatures = ~0u;
+    if (desc.defaults.cameraModel.value_or("perspective") != "equirect")
+        options.sceneFeatures &= ~uint32_t(scene::kSceneEquirect);
+    return graph::compileGraphPlan(desc, graph::passRegistry(), options);
 }
 
 bool overlap(const LayoutNode& a, const LayoutNode& b) {

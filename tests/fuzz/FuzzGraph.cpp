@@ -7,6 +7,7 @@
 #include "core/graph/CompilerStages.h"
 #include "core/graph/GraphDesc.h"
 #include "core/graph/PassRegistry.h"
+#include "core/scene/SceneFeatures.h"
 #include "passes/RegisterPasses.h"
 #include "tests/fuzz/FuzzInput.h"
 
@@ -20,7 +21,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             std::fprintf(stderr, "fuzz graph: graphToJson does not round-trip\n");
             std::abort();
         }
-        for (uint32_t features : {0u, ~0u}) {
+        // No scene, and a scene with everything seen through the graph's camera model (the
+        // foveation passes refuse an equirect camera, PreviewSamples a pinhole).
+        const uint32_t everything = desc.defaults.cameraModel.value_or("perspective") == "equirect"
+                                        ? ~0u
+                                        : ~uint32_t(scene::kSceneEquirect);
+        for (uint32_t features : {0u, everything}) {
             graph::CompileOptions options;
             options.width = 64;
             options.height = 48;
