@@ -1,7 +1,6 @@
 // The tables of `fovea bench`: bench.json (everything), bench.csv (one row per graph) and
 // bench.md (the summary and the per-pass breakdown), docs/bench.md.
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 
 #include "apps/fovea/Bench.h"
@@ -66,11 +65,7 @@ std::vector<std::pair<std::string, std::string>> bandColumns(
     if (!results.empty() && results.front().errors.contains("mean") &&
         results.front().errors["mean"].contains("bands"))
         bands = &results.front().errors["mean"]["bands"];
-    auto number = [](double v) {
-        char text[32];
-        std::snprintf(text, sizeof text, "%g", v);
-        return std::string(text);
-    };
+    auto number = [](double v) { return benchNumber(v, "%g"); };
     if (bands && bands->is_array() && !bands->empty()) {
         for (const auto& b : *bands) {
             const std::string from = number(b.at("from").get<double>());

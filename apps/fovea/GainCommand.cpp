@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <tuple>
 
 #include "apps/fovea/CliChecks.h"
 #include "apps/fovea/Commands.h"
@@ -242,86 +243,99 @@ void addGainCommand(CLI::App& app, GainOptions& o) {
     cmd->add_flag("--json", o.json, "print one JSON object (the saving under `saving`)");
 }
 
-int gainCommand(const GainOptions& o) {
-    const GainInputs in = parseInputs(o);
+namespace {
+
+// Everything `fovea gain` prints, computed once for the JSON and the text form.
+struct GainReport {
+    const GainInputs& in;
+    sampling::GainResult g;
+    sampling::EyeImage eye;
+    sampling::PeresCounts peres;
+    sampling::VisualPolarCounts vp;
+    sampling::FvCounts fv;
+    double pixels = 0;  // of the eye image
+};
+
+constexpr const char* kAreaUnit = "deg^2";
+
+void printGainJson(const GainReport& r) {
+    const GainInputs& in = r.in;
     const DisplayModel& d = in.display;
-    const sampling::GainResult g = sampling::foveationGain(d, in.model);
-    const sampling::EyeImage eye = sampling::eyeImageOf(d);
-    const sampling::PeresCounts peres = sampling::peresCounts(eye, in.r0, in.r1, in.p);
-    const sampling::VisualPolarCounts vp =
-        sampling::visualPolarCounts(eye, in.vpReduction, in.vpFoveaFraction);
-    const sampling::FvCounts fv = sampling::fvCounts(d, in.fvBudget);
-    const double pixels = double(eye.width) * eye.height;
-    const char* areaUnit = "deg^2";
+    const auto& [g, eye, peres, vp, fv, pixels] =
+        std::tie(r.g, r.eye, r.peres, r.vp, r.fv, r.pixels);
+    const char* areaUnit = kAreaUnit;
+    using nlohmann::json;
+    json j;
+    j["preset"] = in.preset ? json(in.preset->name) : json(nullptr);
+    if (in.asPublished) j["p1_reported_saving"] = in.preset->reportedSaving;
+    j["display"] = {
+        {"fov_deg", {d.hfovDeg, d.vfovDeg}},
+        {"shape", sampling::toString(d.shape)},
+        {"cpd", d.cpd},
+        {"cpd_source", in.cpdSource},
+        {"resolution", {d.width, d.height}},
+        {"resolution_source", in.resolutionSource},
+        {"nyquist_cpd",
+         {sampling::nyquistCpd(d.width, d.hfovDeg), sampling::nyquistCpd(d.height, d.vfovDeg)}},
+        {"gaze_deg", {d.gazeDeg.x, d.gazeDeg.y}}};
+    j["model"] = {{"acuity", "P1 Eq. 2, capped at the display's cpd"},
+                  {"measure", sampling::toString(in.model.measure)},
+                  {"density", sampling::toString(in.model.density)},
+                  {"angular_steps", in.model.angularSteps}};
+    j["saving"] = g.saving;
+    j["relative_samples"] = g.relativeSamples;
+    j["required_integral"] = g.required;
+    j["full_integral"] = g.full;
+    j["fov_area"] = g.area;
+    j["area_unit"] = areaUnit;
+    j["cutoff_deg"] = g.cutoffDeg;
+    j["max_eccentricity_deg"] = g.maxEccentricityDeg;
+    j["error_estimate"] = g.errorEstimate;
+    json layers = json::array();
+    for (int l = 0; l < 3; ++l)
+        layers.push_back({{"spp", sampling::kPeresSpp[l]},
+                          {"area_px", peres.area[l]},
+                          {"sampled_px", peres.sampled[l]}});
+    j["layouts"] = {{"eye_image",
+                     {{"width", eye.width},
+                      {"height", eye.height},
+                      {"gaze_px", {eye.gazePx.x, eye.gazePx.y}},
+                      {"pixels", pixels}}},
+                    {"peres",
+                     {{"r0_px", peres.r0},
+                      {"r1_px", peres.r1},
+                      {"radii_source", in.radiiSource},
+                      {"outer_probability", peres.outerProbability},
+                      {"layers", layers},
+                      {"base_samples", peres.baseSamples},
+                      {"table1",
+                       {{"samples", peres.table1Samples},
+                        {"fraction_of_base", peres.table1Samples / peres.baseSamples}}},
+                      {"tossed",
+                       {{"samples", peres.tossedSamples},
+                        {"fraction_of_base", peres.tossedSamples / peres.baseSamples}}}}},
+                    {"visual_polar",
+                     {{"reduction", vp.reduction},
+                      {"fovea_fraction", vp.foveaFraction},
+                      {"grid", {vp.gridWidth, vp.gridHeight}},
+                      {"valid_texels", vp.validTexels},
+                      {"traced_texels", vp.tracedTexels},
+                      {"fraction_of_pixels", double(vp.tracedTexels) / pixels}}},
+                    {"fv",
+                     {{"budget", fv.budget},
+                      {"inside_fov_fraction", fv.insideFraction},
+                      {"samples_in_fov", fv.samplesInFov},
+                      {"fraction_of_frame", fv.frameFraction},
+                      {"samples_per_pixel_at_gaze", fv.gazeSpp}}}};
+    std::cout << j.dump(2) << "\n";
+}
 
-    if (o.json) {
-        using nlohmann::json;
-        json j;
-        j["preset"] = in.preset ? json(in.preset->name) : json(nullptr);
-        if (in.asPublished) j["p1_reported_saving"] = in.preset->reportedSaving;
-        j["display"] = {
-            {"fov_deg", {d.hfovDeg, d.vfovDeg}},
-            {"shape", sampling::toString(d.shape)},
-            {"cpd", d.cpd},
-            {"cpd_source", in.cpdSource},
-            {"resolution", {d.width, d.height}},
-            {"resolution_source", in.resolutionSource},
-            {"nyquist_cpd",
-             {sampling::nyquistCpd(d.width, d.hfovDeg), sampling::nyquistCpd(d.height, d.vfovDeg)}},
-            {"gaze_deg", {d.gazeDeg.x, d.gazeDeg.y}}};
-        j["model"] = {{"acuity", "P1 Eq. 2, capped at the display's cpd"},
-                      {"measure", sampling::toString(in.model.measure)},
-                      {"density", sampling::toString(in.model.density)},
-                      {"angular_steps", in.model.angularSteps}};
-        j["saving"] = g.saving;
-        j["relative_samples"] = g.relativeSamples;
-        j["required_integral"] = g.required;
-        j["full_integral"] = g.full;
-        j["fov_area"] = g.area;
-        j["area_unit"] = areaUnit;
-        j["cutoff_deg"] = g.cutoffDeg;
-        j["max_eccentricity_deg"] = g.maxEccentricityDeg;
-        j["error_estimate"] = g.errorEstimate;
-        json layers = json::array();
-        for (int l = 0; l < 3; ++l)
-            layers.push_back({{"spp", sampling::kPeresSpp[l]},
-                              {"area_px", peres.area[l]},
-                              {"sampled_px", peres.sampled[l]}});
-        j["layouts"] = {{"eye_image",
-                         {{"width", eye.width},
-                          {"height", eye.height},
-                          {"gaze_px", {eye.gazePx.x, eye.gazePx.y}},
-                          {"pixels", pixels}}},
-                        {"peres",
-                         {{"r0_px", peres.r0},
-                          {"r1_px", peres.r1},
-                          {"radii_source", in.radiiSource},
-                          {"outer_probability", peres.outerProbability},
-                          {"layers", layers},
-                          {"base_samples", peres.baseSamples},
-                          {"table1",
-                           {{"samples", peres.table1Samples},
-                            {"fraction_of_base", peres.table1Samples / peres.baseSamples}}},
-                          {"tossed",
-                           {{"samples", peres.tossedSamples},
-                            {"fraction_of_base", peres.tossedSamples / peres.baseSamples}}}}},
-                        {"visual_polar",
-                         {{"reduction", vp.reduction},
-                          {"fovea_fraction", vp.foveaFraction},
-                          {"grid", {vp.gridWidth, vp.gridHeight}},
-                          {"valid_texels", vp.validTexels},
-                          {"traced_texels", vp.tracedTexels},
-                          {"fraction_of_pixels", double(vp.tracedTexels) / pixels}}},
-                        {"fv",
-                         {{"budget", fv.budget},
-                          {"inside_fov_fraction", fv.insideFraction},
-                          {"samples_in_fov", fv.samplesInFov},
-                          {"fraction_of_frame", fv.frameFraction},
-                          {"samples_per_pixel_at_gaze", fv.gazeSpp}}}};
-        std::cout << j.dump(2) << "\n";
-        return kExitOk;
-    }
-
+void printGainText(const GainReport& r) {
+    const GainInputs& in = r.in;
+    const DisplayModel& d = in.display;
+    const auto& [g, eye, peres, vp, fv, pixels] =
+        std::tie(r.g, r.eye, r.peres, r.vp, r.fv, r.pixels);
+    const char* areaUnit = kAreaUnit;
     if (in.preset) say("display   %s: %s\n", in.preset->name, in.preset->source);
     say("          %s FOV %g x %g deg, %g c/deg (%s), gaze (%g, %g) deg from the FOV centre\n",
         sampling::toString(d.shape), d.hfovDeg, d.vfovDeg, d.cpd, in.cpdSource.c_str(), d.gazeDeg.x,
@@ -374,6 +388,22 @@ int gainCommand(const GainOptions& o) {
         "pixel per frame at the gaze\n",
         percent(fv.insideFraction).c_str(), count(fv.samplesInFov).c_str(),
         percent(fv.frameFraction).c_str(), fv.gazeSpp);
+}
+
+}  // namespace
+
+int gainCommand(const GainOptions& o) {
+    const GainInputs in = parseInputs(o);
+    const DisplayModel& d = in.display;
+    GainReport r{in, sampling::foveationGain(d, in.model), sampling::eyeImageOf(d), {}, {}, {}, 0};
+    r.peres = sampling::peresCounts(r.eye, in.r0, in.r1, in.p);
+    r.vp = sampling::visualPolarCounts(r.eye, in.vpReduction, in.vpFoveaFraction);
+    r.fv = sampling::fvCounts(d, in.fvBudget);
+    r.pixels = double(r.eye.width) * r.eye.height;
+    if (o.json)
+        printGainJson(r);
+    else
+        printGainText(r);
     return kExitOk;
 }
 

@@ -9,8 +9,8 @@ namespace fovea::sampling {
 
 double acuityInversePublished(double u) {
     u = std::clamp(u, 0.0, 1.0);
-    if (u <= 0.0965) return 18.64 * std::sqrt(u);
-    return (((25.09 * u + 0.1680) * u + 27.61) * u + 23.87) * u + 3.232;
+    // The polynomial branch is P5 Eq. 3, the same fit (VisualPolar.h).
+    return u <= 0.0965 ? 18.64 * std::sqrt(u) : acuityInversePolynomial(u);
 }
 
 InverseError publishedInverseError(int steps) {

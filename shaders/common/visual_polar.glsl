@@ -47,12 +47,18 @@ float vpAcuityCdfDerivative(float e) {
     return raw / 1091.3132;
 }
 
+// P5 Eq. 3 (= P4 Eq. 7's polynomial branch): the published least-squares fit of f^-1 for u
+// beyond f(5.79) = 0.0965.
+float vpAcuityInversePolynomial(float u) {
+    return (((25.09 * u + 0.1680) * u + 27.61) * u + 23.87) * u + 3.232;
+}
+
 // f^-1(u): closed form where the acuity is flat, else P5 Eq. 3 (the fitted polynomial) refined
 // by Newton steps on Eq. 2 (Eq. 3 alone is up to 0.03 degrees and, in density, 2.4 % off).
 float vpAcuityInverse(float u) {
     u = clamp(u, 0.0, 1.0);
     if (u <= 0.0965067) return sqrt(u * 1091.3132 / kVpPi);
-    float e = (((25.09 * u + 0.1680) * u + 27.61) * u + 23.87) * u + 3.232;
+    float e = vpAcuityInversePolynomial(u);
     e = clamp(e, kVpFlatDegrees, kVpMaxDegrees);
     for (int k = 0; k < 3; ++k)  // derivative >= 0.0042 on [5.79, 80]: no division by ~0
         e = clamp(e - (vpAcuityCdf(e) - u) / vpAcuityCdfDerivative(e), kVpFlatDegrees,

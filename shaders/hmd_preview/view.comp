@@ -33,19 +33,23 @@ int levelOffset(int l) {  // x of level l >= 1 in `mips`
     return o;
 }
 
-vec4 texel(int l, ivec2 q) {
+// Texel q of level l, whose texels start at column `offset` of `mips` (levelOffset; level 0 is
+// the input itself).
+vec4 texel(int l, int offset, ivec2 q) {
     ivec2 s = levelSize(l);
     q.x = ((q.x % s.x) + s.x) % s.x;  // the longitude wraps (both signs)
     q.y = clamp(q.y, 0, s.y - 1);
-    return l == 0 ? texelFetch(equirect, q, 0) : imageLoad(mips, ivec2(q.x + levelOffset(l), q.y));
+    return l == 0 ? texelFetch(equirect, q, 0) : imageLoad(mips, ivec2(q.x + offset, q.y));
 }
 
 vec4 bilinear(int l, vec2 uv) {
+    int offset = l == 0 ? 0 : levelOffset(l);  // once for the four taps
     vec2 p = uv * vec2(levelSize(l)) - 0.5;
     vec2 i = floor(p), f = p - i;
     ivec2 q = ivec2(i);
-    return mix(mix(texel(l, q), texel(l, q + ivec2(1, 0)), f.x),
-               mix(texel(l, q + ivec2(0, 1)), texel(l, q + ivec2(1, 1)), f.x), f.y);
+    return mix(mix(texel(l, offset, q), texel(l, offset, q + ivec2(1, 0)), f.x),
+               mix(texel(l, offset, q + ivec2(0, 1)), texel(l, offset, q + ivec2(1, 1)), f.x),
+               f.y);
 }
 
 vec2 uvThrough(vec3 head, vec2 pixel) {
@@ -63,7 +67,7 @@ void main() {
     vec2 uv = uvThrough(head, local);
     vec4 c;
     if (pc.filterMode == 0) {
-        c = texel(0, ivec2(floor(uv * vec2(pc.srcSize))));
+        c = texel(0, 0, ivec2(floor(uv * vec2(pc.srcSize))));
     } else if (pc.filterMode == 1 || pc.levels == 0) {
         c = bilinear(0, uv);
     } else {

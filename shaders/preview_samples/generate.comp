@@ -26,11 +26,10 @@ layout(push_constant) uniform Params {
 
 const float kDegrees = kCameraPi / 180.0;
 
-// P4 Eq. 7 (= P3 Eq. 6 x 80): f^-1(u) fitted by least squares; the square-root branch is exact
-// (the acuity is flat up to 5.79°, where f = 0.0965).
-float acuityInversePolynomial(float u) {
-    if (u <= 0.0965) return 18.64 * sqrt(max(u, 0.0));
-    return (((25.09 * u + 0.1680) * u + 27.61) * u + 23.87) * u + 3.232;
+// P4 Eq. 7 (= P3 Eq. 6 x 80): the square-root branch is exact (the acuity is flat up to 5.79°,
+// where f = 0.0965), the polynomial is P5 Eq. 3's fit (visual_polar.glsl).
+float acuityInversePublished(float u) {
+    return u <= 0.0965 ? 18.64 * sqrt(max(u, 0.0)) : vpAcuityInversePolynomial(u);
 }
 
 void main() {
@@ -51,7 +50,7 @@ void main() {
             d = hmdViewportDirection(head, 2.0 * vec2(u1, u2) - 1.0, pc.tanHalfFov, pc.aspect);
         } else {
             // FV (P4 Eq. 2-7): eccentricity e by the inversion method, angle uniform.
-            float e = pc.exactInverse != 0u ? vpAcuityInverse(u1) : acuityInversePolynomial(u1);
+            float e = pc.exactInverse != 0u ? vpAcuityInverse(u1) : acuityInversePublished(u1);
             float phi = 2.0 * kCameraPi * u2;
             vec3 t, b;
             hmdBasis(gaze, t, b);
