@@ -24,6 +24,41 @@ void BMFRPass::params(graph::ParamVisitor& v) {
           "feature set: default = [1, n.xyz, w.xyz, w.xyz^2] (P2 Eq. 8); albedo = default + "
           "albedo.rgb (needs the albedo input)",
           {"default", "albedo"});
+    v.add("variant", mVariant, "default",
+          "sets the six choices below that are left at 'variant': published = what the authors' "
+          "OpenCL code computes (maZZZu/bmfr bmfr.cl, the code P2 measured); fovea = fovea's "
+          "first reading of P2 §3; default = per choice, the one measured better on the "
+          "shoot-out scenes: fovea's featureScaling and misses, the published rest "
+          "(docs/passes/BMFR.md#variants)",
+          {"default", "published", "fovea"});
+    v.add("offsetTable", mOffsetTable, "variant",
+          "block-grid offsets (P2 §6.1): published = the authors' 16 BLOCK_OFFSETS; fovea = 16 "
+          "drawn uniformly over [0, 32)^2 (core/sampling/BlockGrid.h)",
+          {"variant", "published", "fovea"});
+    v.add("featureScaling", mScaling, "variant",
+          "P2 §3.4 scaling and noise: published = raw positions and raw squares mapped to [0, 1] "
+          "per block (only shifted when the block spans <= 1 scene unit), normals raw, noise on "
+          "all but the constant column; fovea = positions centred before squaring, every feature "
+          "stretched to [-1, 1], noise on every column",
+          {"variant", "published", "fovea"});
+    v.add("blockEdges", mEdges, "variant",
+          "block rows outside the image: mirror = the edge pixels mirrored into them (published); "
+          "zero = no rows (fovea)",
+          {"variant", "mirror", "zero"});
+    v.add("misses", mMisses, "variant",
+          "pixels without a surface: fit = rows of the fit with the G-buffer's miss features, and "
+          "given the fit's value (published); skip = not fitted, their accumulated value kept "
+          "(fovea)",
+          {"variant", "fit", "skip"});
+    v.add("historyCount", mCount, "variant",
+          "phase I blend weight 1/(n+1) from the bilinearly interpolated history count: "
+          "unrounded = n as interpolated, only the stored count rounded (published); rounded = n "
+          "rounded first (fovea; P2 §3.2 says the count is rounded)",
+          {"variant", "unrounded", "rounded"});
+    v.add("fitClamp", mClamp, "variant",
+          "phase II result: nonnegative = clamped at 0 (published); blockmax = also at the "
+          "block's largest accumulated value (fovea)",
+          {"variant", "nonnegative", "blockmax"});
     v.add("epsilon", mEpsilon, 0.01f,
           "stochastic regularization: uniform noise in [-epsilon, epsilon] added to the scaled "
           "features for the fit only (P2 §3.4: 0.01); 0 = off (the drop guard still holds)",
@@ -44,8 +79,8 @@ void BMFRPass::params(graph::ParamVisitor& v) {
           "pixel's is below this",
           {-1.0f, 1.0f});
     v.add("blockOffsets", mOffsets, true,
-          "move the block grid every frame by one of 16 fixed offsets (P2 §3.5, §6.1); false = "
-          "blocks aligned with the image corner");
+          "move the block grid every frame by one of 16 fixed offsets (P2 §3.5, §6.1; which 16: "
+          "offsetTable); false = blocks aligned with the image corner");
     v.add("dropTolerance", mDropTolerance, 1e-3f,
           "QR guard: a column whose remaining norm is at most this times its original norm is "
           "numerically dependent and dropped (coefficient 0) instead of dividing by ~0",
@@ -146,15 +181,49 @@ void BMFRPass::validate(const graph::ValidateContext& ctx) const {
         ctx.fail("vp", "a Visual-Polar image needs the input 'motion' (GBuffer VP motion)");
 }
 
+BMFRPass::Choices BMFRPass::choices() const {
+    // A choice left at "variant" follows `variant` (`defaultIsPublished`: what the default variant
+    // takes, docs/passes/BMFR.md#variants); otherwise its own value names the behaviour.
+    auto pick = [&](const std::string& value, const char* publishedValue, bool defaultIsPublished) {
+        if (value != "variant") return value == publishedValue;
+        return mVariant == "default" ? defaultIsPublished : mVariant == "published";
+    };
+    Choices c;
+    c.publishedOffsets = pick(mOffsetTable, "published", true);
+    c.publishedScaling = pick(mScaling, "published", false);
+    c.mirrorEdges = pick(mEdges, "mirror", true);
+    c.fitMisses = pick(mMisses, "fit", false);
+    c.unroundedCount = pick(mCount, "unrounded", true);
+    c.clampBlockMax = !pick(mClamp, "nonnegative", true);
+    return c;
+}
+
+std::string BMFRPass::variant() const {
+    const Choices c = choices();
+    return mFeatures + ",offsets=" + (c.publishedOffsets ? "published" : "fovea") +
+           ",scaling=" + (c.publishedScaling ? "published" : "fovea") +
+           ",edges=" + (c.mirrorEdges ? "mirror" : "zero") +
+           ",misses=" + (c.fitMisses ? "fit" : "skip") +
+           ",count=" + (c.unroundedCount ? "unrounded" : "rounded") +
+           ",clamp=" + (c.clampBlockMax ? "blockmax" : "nonnegative");
+}
+
 void BMFRPass::compile(graph::CompileContext& ctx) {
     const bool albedoFeature = mFeatures == "albedo";
+    mChoices = choices();
+    auto flag = [](bool b) { return std::string(b ? "1" : "0"); };
     mUseMotion = ctx.connected("motion");
     mUseAlbedo = ctx.connected("albedo");
     mUseEmission = ctx.connected("emission");
     mUseVp = ctx.connected("vp");
     const std::vector<std::pair<std::string, std::string>> defines = {
         {"BMFR_ALBEDO", albedoFeature ? "1" : "0"},
-        {"BMFR_FP16_HISTORY", mFp16History ? "1" : "0"}};
+        {"BMFR_FP16_HISTORY", mFp16History ? "1" : "0"},
+        {"BMFR_PUBLISHED_SCALING", flag(mChoices.publishedScaling)},
+        {"BMFR_MIRROR_EDGES", flag(mChoices.mirrorEdges)},
+        {"BMFR_FIT_MISSES", flag(mChoices.fitMisses)},
+        {"BMFR_CLAMP_BLOCKMAX", flag(mChoices.clampBlockMax)},
+        {"BMFR_UNROUNDED_COUNT", flag(mChoices.unroundedCount)}};
     mAccumulate = ctx.createPipeline("bmfr/accumulate.comp", defines);
     mFit = ctx.createPipeline("bmfr/fit.comp", defines);
     mWeightedSum = ctx.createPipeline("bmfr/weighted_sum.comp", defines);
@@ -216,8 +285,10 @@ void BMFRPass::execute(graph::ExecuteContext& ctx) {
 
     // (II) fit: one workgroup of 256 threads per block.
     // P2 §6.1's moving block grid (core/sampling/BlockGrid.h, shared with VisualPolarWarp).
+    const auto table = mChoices.publishedOffsets ? sampling::BlockGridTable::Published
+                                                 : sampling::BlockGridTable::Fovea;
     const auto offset =
-        mOffsets ? sampling::blockGridOffset(ctx.frame().index) : std::array<int, 2>{0, 0};
+        mOffsets ? sampling::blockGridOffset(ctx.frame().index, table) : std::array<int, 2>{0, 0};
     const uint64_t seed = ctx.frame().seed;
     const uint32_t frameSeed = uint32_t(seed) ^ (uint32_t(seed >> 32) * 0x9e3779b9u) ^
                                (uint32_t(ctx.frame().index) * 0x85ebca6bu);
@@ -228,7 +299,8 @@ void BMFRPass::execute(graph::ExecuteContext& ctx) {
         .set("seed", frameSeed)
         .set("epsilon", mEpsilon)
         .set("dropTolerance", mDropTolerance)
-        .set("useVp", int(mUseVp));
+        .set("useVp", int(mUseVp))
+        .set("frame", uint32_t(ctx.frame().index));
     mFit->dispatch(cmd, uint32_t(mBlocksX * mBlocksY) * 256u, 1);
     gpu::computeToComputeBarrier(cmd);
     stamp(2);

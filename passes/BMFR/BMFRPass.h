@@ -3,7 +3,8 @@
 // fit of noise-free features [1, n, w, w^2] (augmented Householder QR with stochastic
 // regularization, block offsets moving every frame), weighted sum, (III) second accumulation
 // reusing phase I's discard decisions, and remodulation by albedo. Numerically guarded: see
-// docs/passes/BMFR.md.
+// docs/passes/BMFR.md. `variant` picks what the authors' OpenCL code (maZZZu/bmfr) computes or
+// fovea's reading of the paper, one named parameter per difference (docs/passes/BMFR.md#variants).
 #pragma once
 #include <array>
 #include <cstdint>
@@ -28,7 +29,7 @@ public:
     void compile(graph::CompileContext& ctx) override;
     void validate(const graph::ValidateContext& ctx) const override;
     void execute(graph::ExecuteContext& ctx) override;
-    std::string variant() const override { return mFeatures; }
+    std::string variant() const override;
     nlohmann::json statistics(const graph::StatisticsContext& ctx) const override;
 
     // Blocks per row for an image `width` wide (one more than needed without offsets, so that
@@ -40,11 +41,26 @@ public:
     // Negative until available.
     const std::array<double, 4>& kernelMs() const { return mKernelMs; }
 
+    // Each difference between fovea's BMFR and the authors' OpenCL code (maZZZu/bmfr), resolved
+    // from `variant` and the per-choice parameters (docs/passes/BMFR.md "Variants").
+    struct Choices {
+        bool publishedOffsets = true;   // the authors' BLOCK_OFFSETS table
+        bool publishedScaling = false;  // raw squares, [0, 1] positions, raw normals, their noise
+        bool mirrorEdges = true;        // block rows outside the image mirror the edge pixels
+        bool fitMisses = false;         // misses are rows of the fit and get the fit's value
+        bool unroundedCount = true;     // phase I weight from the interpolated count
+        bool clampBlockMax = false;     // fitted values clamped to the block's max (else >= 0)
+    };
+    Choices choices() const;
+
 private:
     void readTimings();
 
     // Parameters.
     std::string mFeatures = "default";
+    std::string mVariant = "default";
+    std::string mOffsetTable = "variant", mScaling = "variant", mEdges = "variant",
+                mMisses = "variant", mCount = "variant", mClamp = "variant";
     float mEpsilon = 0.01f;
     float mAlpha1 = 0.2f;
     float mAlpha3 = 0.1f;
@@ -58,6 +74,7 @@ private:
     // State.
     int mBlocksX = 0, mBlocksY = 0;
     bool mUseMotion = false, mUseAlbedo = false, mUseEmission = false, mUseVp = false;
+    Choices mChoices;
     std::unique_ptr<gpu::ComputePipeline> mAccumulate, mFit, mWeightedSum, mSecond;
     std::unique_ptr<gpu::TimestampPool> mTimestamps;
     bool mTimingsPending = false;

@@ -118,7 +118,10 @@ void main() {
         // nothing (prev exactly on a rejected tap's centre) is treated as no history.
         if (wsum > 1e-4) {
             hist /= wsum;
-            count = floor(count / wsum + 0.5);  // P2: rounded to the closest integer
+            count /= wsum;
+#if !BMFR_UNROUNDED_COUNT
+            count = floor(count + 0.5);  // P2: rounded to the closest integer
+#endif
         } else {
             hist = vec3(0.0);
             count = 0.0;
@@ -131,8 +134,11 @@ void main() {
         // CMA weight 1 / (n + 1) until it would fall below alpha, then EMA with alpha.
         float a = max(1.0 / (count + 1.0), pc.alpha);  // count >= 0
         acc = mix(hist, x, a);
-        count = min(count + 1.0, pc.maxCount);
+        // Published (bmfr.cl accumulate_noisy_data): the weight above uses the interpolated
+        // count; only the stored count is rounded (to nearest even, convert_uchar_sat_rte).
+        count = min(roundEven(count) + 1.0, pc.maxCount);
     }
+    count = roundEven(count);  // unsampled pixel: the interpolated history count, rounded
     // Belt and braces: history only ever holds finite values.
     if (!bmfrFinite3(acc)) { acc = vec3(0.0); count = 0.0; }
     acc = min(acc, vec3(BMFR_HIST_MAX));  // the output equals what the history keeps

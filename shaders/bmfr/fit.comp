@@ -6,6 +6,9 @@
 // only computes R (Eq. 4/5) and solves R alpha = r by back substitution. The rows live in
 // registers (4 per thread); column sums go through one shared-memory tree reduction.
 //
+// The variant defines (bmfr_common.glsl) select the published code's scaling, noise, edge rows and
+// miss rows; the QR below is the same for both.
+//
 // Guards the published code does not have: sign-aware reflections (no cancellation); a column
 // whose remaining norm is zero or below `dropTolerance` x its original norm is dropped (alpha =
 // 0, the rows stay for later columns) instead of dividing by a zero pivot, so rank-deficient
@@ -35,6 +38,7 @@ layout(push_constant) uniform Params {
     float epsilon;  // stochastic regularization amplitude (P2 §3.4: 0.01)
     float dropTolerance;
     int useVp;  // 1: the `vp` block may move the block columns (bmfrBlockOffset)
+    uint frame;  // frame index: the published noise pattern's frame term
 } pc;
 
 const float kBig = 3.0e38;
@@ -78,13 +82,23 @@ void main() {
         zv[BMFR_ROWS_PER_THREAD];
 
     // Load; rows outside the image or without (finite) geometry are zero rows: they do not
-    // change the least-squares solution.
+    // change the least-squares solution. Published edges: a block that touches the image fills
+    // its outside rows with mirrored pixels. Published misses: a miss is a row with the
+    // G-buffer's miss features (zeros) and its accumulated colour.
+    bool touches = all(lessThan(origin, pc.size)) && all(greaterThan(origin + BMFR_BLOCK, ivec2(0)));
     for (int j = 0; j < BMFR_ROWS_PER_THREAD; ++j) {
         int row = int(t) + j * BMFR_THREADS;
         ivec2 p = origin + ivec2(row % BMFR_BLOCK, row / BMFR_BLOCK);
         valid[j] = false;
         wv[j] = nv[j] = av[j] = zv[j] = vec3(0.0);
-        if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, pc.size))) continue;
+        bool inside = all(greaterThanEqual(p, ivec2(0))) && all(lessThan(p, pc.size));
+#if BMFR_MIRROR_EDGES
+        if (!inside && touches) {
+            p = bmfrMirror(p, pc.size);
+            inside = true;
+        }
+#endif
+        if (!inside) continue;
         vec4 w = texelFetch(position, p, 0);
         vec3 n = texelFetch(normal, p, 0).xyz;
         vec3 z = texelFetch(accumulated, p, 0).rgb;
@@ -94,7 +108,10 @@ void main() {
         if (!bmfrFinite3(a)) a = vec3(0.0);
         a = clamp(a, 0.0, 1.0);
 #endif
-        if (!(w.w > 0.0) || !bmfrFinite3(w.xyz) || !bmfrFinite3(n) || !bmfrFinite3(z)) continue;
+        if (!bmfrFinite3(w.xyz) || !bmfrFinite3(n) || !bmfrFinite3(z)) continue;
+#if !BMFR_FIT_MISSES
+        if (!(w.w > 0.0)) continue;
+#endif
         valid[j] = true;
         wv[j] = w.xyz;
         nv[j] = clamp(n, -1.0, 1.0);
@@ -169,11 +186,21 @@ void main() {
     fMid[0] = 0.0;
     fInv[0] = 1.0;
     for (int m = 1; m < BMFR_M; ++m) {
+#if BMFR_PUBLISHED_SCALING
+        // bmfr.cpp: only the positions and their squares (columns 4-9) are scaled, by the block
+        // range when it exceeds 1 scene unit, else only shifted to start at 0 (so the scaling
+        // depends on the scene's units); normals (and albedo, fovea's extension) stay as they are.
+        bool scaled = m >= 4 && m <= 9;
+        float range = fMax[m] - fMin[m];  // both finite: the block has a valid row
+        fMid[m] = scaled ? fMin[m] : 0.0;
+        fInv[m] = scaled && range > 1.0 ? 1.0 / range : 1.0;
+#else
         // Every unscaled feature is O(1) (unit normals, positions already in [-1, 1], albedo in
         // [0, 1]); a half-range at fp16 rounding level (normals, albedo come as fp16) is noise.
         float h = 0.5 * fMax[m] - 0.5 * fMin[m];
         fMid[m] = empty ? 0.0 : 0.5 * fMax[m] + 0.5 * fMin[m];
         fInv[m] = !empty && h > 1e-3 ? 1.0 / h : 0.0;
+#endif
     }
 
     // Rows of [T + N, z / zScale].
@@ -181,8 +208,13 @@ void main() {
         int row = int(t) + j * BMFR_THREADS;
         uint h = hashCombine(hashCombine(pc.seed, uint(block)), uint(row));
         for (int m = 0; m < BMFR_M; ++m) {
+#if BMFR_PUBLISHED_SCALING
+            // bmfr.cl add_random: no noise on the constant column.
+            float noise = m == 0 ? 0.0 : bmfrPublishedNoise(uint(row), uint(m), pc.frame, pc.epsilon);
+#else
             h = pcgHash(h);
             float noise = (2.0 * uintToUnitFloat(h) - 1.0) * pc.epsilon;  // zero-mean uniform
+#endif
             float f = m == 0 ? 1.0 : bmfrScale(A[j][m], fMid[m], fInv[m]);
             A[j][m] = valid[j] ? f + noise : 0.0;
         }

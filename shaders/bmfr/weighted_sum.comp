@@ -2,7 +2,9 @@
 // BMFR phase II, weighted sum (seed 003, P2 Eq. 3/6): each pixel evaluates its block's fitted
 // coefficients on the NOISE-FREE features (the regularization noise only entered the fit).
 // The result is clamped to [0, block max of z]: radiance is non-negative, and a least-squares
-// fit of data in [0, zmax] has no reason to leave that range except by extrapolation.
+// fit of data in [0, zmax] has no reason to leave that range except by extrapolation. The
+// published code (bmfr.cl weighted_sum) clamps only at 0 (BMFR_CLAMP_BLOCKMAX = 0) and, with
+// BMFR_FIT_MISSES, evaluates the fit on misses too.
 #extension GL_GOOGLE_include_directive : require
 #define BMFR_BLOCK_GRID_VP
 #include "bmfr/bmfr_common.glsl"
@@ -39,7 +41,12 @@ void main() {
 #endif
     // Pixels the fit did not use (miss, non-finite geometry) keep their accumulated value.
     vec3 y = z.rgb;
-    if (w.w > 0.0 && bmfrFinite3(w.xyz) && bmfrFinite3(n)) {
+#if BMFR_FIT_MISSES
+    bool fitted_here = true;
+#else
+    bool fitted_here = w.w > 0.0;
+#endif
+    if (fitted_here && bmfrFinite3(w.xyz) && bmfrFinite3(n)) {
         ivec2 q = p + bmfrBlockOffset(pc.offset, pc.useVp);  // offset >= 0, so q >= 0
         int block = (q.y / BMFR_BLOCK) * pc.blocksX + q.x / BMFR_BLOCK;
         int base = block * BMFR_COEF_STRIDE;
@@ -60,7 +67,12 @@ void main() {
                              coefficients.v[base + m * 3 + 1],
                              coefficients.v[base + m * 3 + 2]);
         }
-        y = bmfrFinite3(s) ? clamp(s, vec3(0.0), zMax) : z.rgb;
+#if BMFR_CLAMP_BLOCKMAX
+        vec3 upper = zMax;
+#else
+        vec3 upper = vec3(BMFR_HIST_MAX);  // only the finite limit of the history format
+#endif
+        y = bmfrFinite3(s) ? clamp(s, vec3(0.0), upper) : z.rgb;
     }
     if (!bmfrFinite3(y)) y = vec3(0.0);
     imageStore(fitted, p, vec4(y, z.a));

@@ -25,7 +25,9 @@ using namespace fovea::testbmfr;
 namespace {
 
 constexpr int kFitSize = 64;  // 2x2 blocks
-const char* kNoOffsets = R"({ "blockOffsets": false })";
+// fovea's variant: its miss and edge rows are the oracle's (BmfrVariantTests.cpp checks the
+// published variant against a port of the authors' code).
+const char* kNoOffsets = R"({ "blockOffsets": false, "variant": "fovea" })";
 
 // TwoPixels: only the first two pixels of each block are hits. After the constant column every
 // column, restricted to the rows not yet reflected, is parallel to one unit vector: exactly the

@@ -134,11 +134,15 @@ TEST_F(BMFRStressTest, ZeroAlbedoRemodulatesWithOne) {
         }
 }
 
-TEST_F(BMFRStressTest, FarFromOriginGivesTheSameImage) {
+class BMFRFarFromOriginTest : public test::GpuTest,
+                              public ::testing::WithParamInterface<const char*> {};
+
+TEST_P(BMFRFarFromOriginTest, GivesTheSameImage) {
+    const std::string variant = GetParam();
     // 64 px: several blocks with moving offsets; 6 frames of fresh noise.
     auto render = [&](float shift) {
         BmfrInputs in = makeScene(shift, 3, 64);
-        BmfrHarness h(ctx(), in, "{}");
+        BmfrHarness h(ctx(), in, R"({ "variant": ")" + variant + R"(" })");
         for (int f = 0; f < 6; ++f) {
             recolor(in, 100 + uint32_t(f));
             h.upload(in, true);
@@ -158,12 +162,16 @@ TEST_F(BMFRStressTest, FarFromOriginGivesTheSameImage) {
         sum2 += d * d;
     }
     const double rmse = std::sqrt(sum2 / (near.size() * 3 / 4));
-    // Positions 1e4 from the origin carry ~1e-3 absolute rounding (fp32); the images agree to
-    // that level. Without per-block centring the squared features lose everything below ~8
-    // units and the fits differ by ~0.1-1.
-    EXPECT_LT(rmse, 5e-3) << "RMSE near vs far (values ~1-2)";
-    EXPECT_LT(worst, 5e-2);
+    // Positions 1e4 from the origin carry ~1e-3 absolute rounding (fp32); with fovea's scaling
+    // (centred before squaring) the images agree to that level. The published scaling squares
+    // raw positions (1e8, where fp32 steps by 8) and then scales by the block range: measured
+    // RMSE 6.3e-3 here, bounded but above fovea's; docs/passes/BMFR.md#variants.
+    const bool fovea = variant == "fovea";
+    EXPECT_LT(rmse, fovea ? 5e-3 : 2e-2) << "RMSE near vs far (values ~1-2)";
+    EXPECT_LT(worst, fovea ? 5e-2 : 2e-1);
 }
+
+INSTANTIATE_TEST_SUITE_P(Variant, BMFRFarFromOriginTest, ::testing::Values("fovea", "published"));
 
 TEST_F(BMFRStressTest, LongStaticAccumulationSaturatesWithoutDrift) {
     // 300 frames > the 255 count cap; the EMA regime starts after 4 (phase I) and 9 (phase III)
