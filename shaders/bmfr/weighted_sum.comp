@@ -42,11 +42,11 @@ void main() {
     // Pixels the fit did not use (miss, non-finite geometry) keep their accumulated value.
     vec3 y = z.rgb;
 #if BMFR_FIT_MISSES
-    bool fitted_here = true;
+    bool useFit = true;
 #else
-    bool fitted_here = w.w > 0.0;
+    bool useFit = w.w > 0.0;
 #endif
-    if (fitted_here && bmfrFinite3(w.xyz) && bmfrFinite3(n)) {
+    if (useFit && bmfrFinite3(w.xyz) && bmfrFinite3(n)) {
         ivec2 q = p + bmfrBlockOffset(pc.offset, pc.useVp);  // offset >= 0, so q >= 0
         int block = (q.y / BMFR_BLOCK) * pc.blocksX + q.x / BMFR_BLOCK;
         int base = block * BMFR_COEF_STRIDE;
