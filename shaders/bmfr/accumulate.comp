@@ -137,8 +137,9 @@ void main() {
         // Published (bmfr.cl accumulate_noisy_data): the weight above uses the interpolated
         // count; only the stored count is rounded (to nearest even, convert_uchar_sat_rte).
         count = min(roundEven(count) + 1.0, pc.maxCount);
+    } else {
+        count = roundEven(count);  // unsampled: the interpolated history count, rounded
     }
-    count = roundEven(count);  // unsampled pixel: the interpolated history count, rounded
     // Belt and braces: history only ever holds finite values.
     if (!bmfrFinite3(acc)) { acc = vec3(0.0); count = 0.0; }
     acc = min(acc, vec3(BMFR_HIST_MAX));  // the output equals what the history keeps

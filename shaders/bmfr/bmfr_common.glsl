@@ -62,6 +62,7 @@ ivec2 bmfrBlockOffset(ivec2 pushed, int useVp) {
 #endif
 
 bool bmfrFinite3(vec3 v) { return !any(isnan(v)) && !any(isinf(v)); }
+bool bmfrFinite4(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
 
 // Published edge handling (bmfr.cl `mirror`): a block row outside the image reads the pixel
 // mirrored at the edge, so every block that touches the image fits 1024 rows. The clamp keeps an
@@ -71,7 +72,6 @@ ivec2 bmfrMirror(ivec2 p, ivec2 size) {
                     p.y < 0 ? -p.y - 1 : (p.y >= size.y ? 2 * size.y - p.y - 1 : p.y));
     return clamp(m, ivec2(0), size - 1);
 }
-bool bmfrFinite4(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
 
 // The unscaled features of one pixel (P2 Eq. 1/8); bmfrScale then maps each feature over the
 // block (P2 §3.4). fovea scaling: positions are centred on the block's min/max mid-point and

@@ -85,7 +85,9 @@ void main() {
     // change the least-squares solution. Published edges: a block that touches the image fills
     // its outside rows with mirrored pixels. Published misses: a miss is a row with the
     // G-buffer's miss features (zeros) and its accumulated colour.
+#if BMFR_MIRROR_EDGES
     bool touches = all(lessThan(origin, pc.size)) && all(greaterThan(origin + BMFR_BLOCK, ivec2(0)));
+#endif
     for (int j = 0; j < BMFR_ROWS_PER_THREAD; ++j) {
         int row = int(t) + j * BMFR_THREADS;
         ivec2 p = origin + ivec2(row % BMFR_BLOCK, row / BMFR_BLOCK);
@@ -206,7 +208,9 @@ void main() {
     // Rows of [T + N, z / zScale].
     for (int j = 0; j < BMFR_ROWS_PER_THREAD; ++j) {
         int row = int(t) + j * BMFR_THREADS;
+#if !BMFR_PUBLISHED_SCALING
         uint h = hashCombine(hashCombine(pc.seed, uint(block)), uint(row));
+#endif
         for (int m = 0; m < BMFR_M; ++m) {
 #if BMFR_PUBLISHED_SCALING
             // bmfr.cl add_random: no noise on the constant column.

@@ -1,10 +1,10 @@
 #version 460
 // BMFR phase II, weighted sum (seed 003, P2 Eq. 3/6): each pixel evaluates its block's fitted
 // coefficients on the NOISE-FREE features (the regularization noise only entered the fit).
-// The result is clamped to [0, block max of z]: radiance is non-negative, and a least-squares
-// fit of data in [0, zmax] has no reason to leave that range except by extrapolation. The
-// published code (bmfr.cl weighted_sum) clamps only at 0 (BMFR_CLAMP_BLOCKMAX = 0) and, with
-// BMFR_FIT_MISSES, evaluates the fit on misses too.
+// The result is clamped at 0 (radiance is non-negative), as the published code (bmfr.cl
+// weighted_sum) does; with BMFR_CLAMP_BLOCKMAX also at the block max of z, since a least-squares
+// fit of data in [0, zmax] leaves that range only by extrapolation. With BMFR_FIT_MISSES the fit
+// is evaluated on misses too (published).
 #extension GL_GOOGLE_include_directive : require
 #define BMFR_BLOCK_GRID_VP
 #include "bmfr/bmfr_common.glsl"
