@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "apps/fovea/Report.h"
-#include "core/image/ImageMetrics.h"
-#include "core/sampling/EccentricityBands.h"
+#include "eval/metrics/ImageMetrics.h"
+#include "eval/metrics/EccentricityBands.h"
 
 namespace fovea::app {
 
@@ -61,7 +61,7 @@ struct BenchSpec {
     bool noiseFloorRender = false;
     std::vector<BenchAgainst> against;
     // Radii of the per-layer errors; unset: those of the first graph with a FoveationMask pass.
-    std::optional<sampling::LayerRadii> layers;
+    std::optional<eval::LayerRadii> layers;
     std::vector<BenchGraph> graphs;
 };
 
@@ -77,7 +77,7 @@ struct BenchPass {
 // The errors of one output against one more reference (BenchSpec::against).
 struct BenchTrack {
     std::string label;
-    image::ImageMetrics meanErrors;
+    eval::ImageMetrics meanErrors;
     nlohmann::json errors;  // FrameErrors::json()
 };
 
@@ -86,7 +86,7 @@ struct BenchResult {
     std::string output;  // the output compared
     Stats frameMs;       // GPU frame time over the measured frames
     double speedup = 1;  // baseline (first graph) median frame ms / this graph's
-    image::ImageMetrics meanErrors;
+    eval::ImageMetrics meanErrors;
     double temporalError = 0;
     nlohmann::json errors;            // FrameErrors::json()
     std::vector<BenchTrack> against;  // one per BenchSpec::against, in order
@@ -111,7 +111,7 @@ std::string benchMarkdown(const std::string& s);
 nlohmann::json combineSeedErrors(const std::vector<uint64_t>& seeds,
                                  const std::vector<nlohmann::json>& perSeed);
 // The mean over the seeds of each figure (PSNR +inf when any is).
-image::ImageMetrics meanOverSeeds(const std::vector<image::ImageMetrics>& perSeed);
+eval::ImageMetrics meanOverSeeds(const std::vector<eval::ImageMetrics>& perSeed);
 // The paired difference of `graph` against `first` (both combineSeedErrors objects, same seeds):
 // {"against": label, "figures": {name: {"seeds": [graph - first per seed], "mean",
 // "standard_error", "significant": |mean| > 2 standard errors}}} for the figures of

@@ -148,7 +148,7 @@ struct MeasuredReference {
 
 // The radii of the per-layer errors: the bench's "layers", else the FoveationMask parameters
 // (after --set) of the first graph that has one; none when no graph has.
-std::optional<sampling::LayerRadii> layerRadii(const BenchSpec& spec) {
+std::optional<eval::LayerRadii> layerRadii(const BenchSpec& spec) {
     if (spec.layers) return spec.layers;
     for (const auto& g : spec.graphs)
         if (auto radii = foveationRadiiOf(loadBenchGraph(spec, g.file, g.sets, g.pointer)))
@@ -168,7 +168,7 @@ struct SeedRun {
 
 SeedRun runBenchSeed(const BenchSpec& spec, const BenchGraph& g, uint64_t seed, gpu::Context& ctx,
                      std::vector<MeasuredReference>& references,
-                     const std::optional<sampling::LayerRadii>& layers,
+                     const std::optional<eval::LayerRadii>& layers,
                      std::vector<FrameErrors>* floors, bool quiet) {
     graph::GraphDesc desc = loadBenchGraph(spec, g.file, g.sets, g.pointer);
     RunScene scene(sceneOptions(spec), desc);
@@ -241,7 +241,7 @@ SeedRun runBenchSeed(const BenchSpec& spec, const BenchGraph& g, uint64_t seed, 
 // as FrameErrors gives them, of several the means over the seeds (combineSeedErrors).
 BenchResult runBenchGraph(const BenchSpec& spec, const BenchGraph& g, gpu::Context& ctx,
                           std::vector<MeasuredReference>& references,
-                          const std::optional<sampling::LayerRadii>& layers,
+                          const std::optional<eval::LayerRadii>& layers,
                           std::vector<FrameErrors>* floors, bool quiet) {
     std::vector<SeedRun> runs;
     for (size_t s = 0; s < spec.seeds.size(); ++s)
@@ -272,7 +272,7 @@ BenchResult runBenchGraph(const BenchSpec& spec, const BenchGraph& g, gpu::Conte
             track.meanErrors = runs[0].errors[i].mean();
             track.errors = runs[0].errors[i].json();
         } else {
-            std::vector<image::ImageMetrics> means;
+            std::vector<eval::ImageMetrics> means;
             std::vector<json> perSeed;
             for (const auto& run : runs) {
                 means.push_back(run.errors[i].mean());
@@ -307,7 +307,7 @@ int benchCommand(const BenchOptions& o) {
     checkOutputDir(dir, "--out", o.overwrite);
     // Every graph file and --set is checked before the device exists (fail fast).
     for (const auto& g : spec.graphs) loadBenchGraph(spec, g.file, g.sets, g.pointer);
-    const std::optional<sampling::LayerRadii> layers = layerRadii(spec);
+    const std::optional<eval::LayerRadii> layers = layerRadii(spec);
     // File references are read and checked before the device exists too.
     auto source = [&](const std::string& path, const std::string& pointer) {
         ReferenceSource r(path, spec.file + ": " + pointer, spec.width, spec.height);
@@ -363,7 +363,7 @@ int benchCommand(const BenchOptions& o) {
         ms.push_back(r.frameMs.median);
         rmse.push_back(r.meanErrors.rmsePercent);
     }
-    const std::vector<bool> pareto = image::paretoOptimal(ms, rmse);
+    const std::vector<bool> pareto = eval::paretoOptimal(ms, rmse);
     for (size_t i = 0; i < results.size(); ++i) results[i].pareto = pareto[i];
     if (spec.seeds.size() > 1)
         for (size_t i = 1; i < results.size(); ++i)

@@ -246,7 +246,7 @@ BenchSpec parseBenchFile(const fs::path& file) {
                 r.fail(pointer, "expected a finite number >= 0");
             return v.get<double>();
         };
-        sampling::LayerRadii radii;
+        eval::LayerRadii radii;
         radii.r0 = radius("r0");
         radii.r1 = radius("r1");
         if (radii.r1 < radii.r0) r.fail("/layers/r1", "r1 is smaller than r0");

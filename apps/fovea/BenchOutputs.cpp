@@ -5,7 +5,7 @@
 
 #include "apps/fovea/Bench.h"
 #include "apps/fovea/OutputFolder.h"
-#include "core/image/ImageMetrics.h"
+#include "eval/metrics/ImageMetrics.h"
 
 namespace fovea::app {
 
@@ -124,7 +124,7 @@ const json* floorOf(const json& header, const std::string& label) {
 // noiseCorrectedRmse); NaN without a floor.
 double correctedPercent(const json& errors, const json* floor) {
     if (!floor) return std::nan("");
-    return 100.0 * image::noiseCorrectedRmse(meanOf(errors, "mse"), meanOf(*floor, "mse"));
+    return 100.0 * eval::noiseCorrectedRmse(meanOf(errors, "mse"), meanOf(*floor, "mse"));
 }
 
 std::string layerHeading(const json& header) {

@@ -170,17 +170,17 @@ json combineSeedErrors(const std::vector<uint64_t>& seeds, const std::vector<jso
     return out;
 }
 
-image::ImageMetrics meanOverSeeds(const std::vector<image::ImageMetrics>& perSeed) {
-    image::ImageMetrics m = perSeed.front();
-    auto mean = [&](double image::ImageMetrics::*field) {
+eval::ImageMetrics meanOverSeeds(const std::vector<eval::ImageMetrics>& perSeed) {
+    eval::ImageMetrics m = perSeed.front();
+    auto mean = [&](double eval::ImageMetrics::*field) {
         std::vector<double> v;
         for (const auto& p : perSeed) v.push_back(p.*field);
         m.*field = meanOf(v);  // PSNR: +inf when any seed's is (identical images)
     };
     for (auto field :
-         {&image::ImageMetrics::mse, &image::ImageMetrics::rmse, &image::ImageMetrics::rmsePercent,
-          &image::ImageMetrics::relMse, &image::ImageMetrics::psnr, &image::ImageMetrics::ssim,
-          &image::ImageMetrics::meanAbsLuminanceDiff})
+         {&eval::ImageMetrics::mse, &eval::ImageMetrics::rmse, &eval::ImageMetrics::rmsePercent,
+          &eval::ImageMetrics::relMse, &eval::ImageMetrics::psnr, &eval::ImageMetrics::ssim,
+          &eval::ImageMetrics::meanAbsLuminanceDiff})
         mean(field);
     return m;
 }

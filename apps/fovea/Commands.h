@@ -102,6 +102,14 @@ struct CompareOptions {
     bool json = false;
     double peak = 1.0;
     double epsilon = 1e-2;
+    // ꟻLIP (eval/flip/Flip.h, docs/metrics.md "ꟻLIP").
+    bool flipOnly = false;          // --flip: only the ꟻLIP figures
+    bool noFlip = false;            // --no-flip
+    std::string flipMode = "auto";  // auto (by the reference's file type) | ldr | hdr
+    double ppd = 0;                 // 0: ꟻLIP's default observer (67.02 ppd)
+    std::optional<double> startExposure, stopExposure;
+    std::string flipMap;     // the error map image (.exr or .png)
+    bool overwrite = false;  // --flip-map may replace an existing file
 };
 void addCompareCommand(CLI::App& app, CompareOptions& options);
 int compareCommand(const CompareOptions& options);

@@ -126,7 +126,7 @@ void ReferenceSource::load(const fs::path& file) {
     mImage = image::readImage(file);
     if (mImage.width != mWidth || mImage.height != mHeight)
         throw InputError(file.string(), "", "the reference changed size while it was read");
-    image::checkFinite(mImage, file.string());
+    eval::checkFinite(mImage, file.string());
 }
 
 const image::ImageRGBA& ReferenceSource::forFrame(uint32_t frame) {
@@ -141,13 +141,13 @@ const image::ImageRGBA& ReferenceSource::forFrame(uint32_t frame) {
     return mImage;
 }
 
-std::optional<sampling::LayerRadii> foveationRadiiOf(const graph::GraphDesc& desc) {
+std::optional<eval::LayerRadii> foveationRadiiOf(const graph::GraphDesc& desc) {
     for (const auto& p : desc.passes) {
         if (p.type != "FoveationMask" || !p.enabled) continue;
         auto pass = graph::passRegistry().create(p.type, p.name);
         graph::loadParams(*pass, p.params, desc.file, p.pointer + "/params");
         const nlohmann::json values = graph::saveParams(*pass, false);
-        sampling::LayerRadii radii;
+        eval::LayerRadii radii;
         radii.r0 = values.at("r0").get<double>();
         radii.r1 = values.at("r1").get<double>();
         radii.degrees = values.at("radiusUnit").get<std::string>() == "degrees";
@@ -188,21 +188,32 @@ void FrameErrors::add(uint32_t frame, const image::ImageRGBA& test, const std::s
                       const scene::FrameCamera* camera) {
     Frame f{frame,
             referenceName,
-            image::computeMetrics(test, reference, mOptions, testName, referenceName),
+            eval::computeMetrics(test, reference, mOptions, testName, referenceName),
             std::nullopt,
             {},
-            {}};
-    // computeMetrics has checked the sizes (InputError otherwise).
-    if (camera) f.bands = sampling::eccentricityBandErrors(test, reference, *camera);
+            {},
+            nullptr};
+    // computeMetrics has checked the sizes and values (InputError otherwise).
+    std::optional<eval::FlipResult> flip;
+    if (mFlip) {
+        eval::FlipOptions options = *mFlip;
+        if (mFlipPpdFromCamera && camera)
+            options.pixelsPerDegree = eval::cameraPixelsPerDegree(*camera, test.width, test.height);
+        flip = eval::computeFlip(test, reference, options, testName, referenceName);
+        f.metrics.flipMean = flip->mean;
+        f.flip = eval::flipSettingsToJson(*flip);
+    }
+    const std::vector<float>* flipMap = flip ? &flip->errors : nullptr;
+    if (camera) f.bands = eval::eccentricityBandErrors(test, reference, *camera, flipMap);
     if (camera && mLayers)
-        f.layers = sampling::foveationLayerErrors(test, reference, *camera, *mLayers);
-    if (mPrevious) f.temporal = image::temporalError(*mPrevious, test, "previous frame", testName);
+        f.layers = eval::foveationLayerErrors(test, reference, *camera, *mLayers, flipMap);
+    if (mPrevious) f.temporal = eval::temporalError(*mPrevious, test, "previous frame", testName);
     mFrames.push_back(std::move(f));
     mPrevious = test;
 }
 
-image::ImageMetrics FrameErrors::mean() const {
-    image::ImageMetrics m;
+eval::ImageMetrics FrameErrors::mean() const {
+    eval::ImageMetrics m;
     if (mFrames.empty()) return m;
     m.width = mFrames.front().metrics.width;
     m.height = mFrames.front().metrics.height;
@@ -215,44 +226,57 @@ image::ImageMetrics FrameErrors::mean() const {
         m.ssim += f.metrics.ssim;
         m.meanAbsLuminanceDiff += f.metrics.meanAbsLuminanceDiff;
     }
+    // Every frame has ꟻLIP or none has (setFlip comes before add): NaN stays NaN.
+    m.flipMean = 0;
+    for (const auto& f : mFrames) m.flipMean += f.metrics.flipMean;
     const double n = double(mFrames.size());  // >= 1 here
-    for (double* v :
-         {&m.mse, &m.rmse, &m.rmsePercent, &m.relMse, &m.psnr, &m.ssim, &m.meanAbsLuminanceDiff})
+    for (double* v : {&m.mse, &m.rmse, &m.rmsePercent, &m.relMse, &m.psnr, &m.ssim,
+                      &m.meanAbsLuminanceDiff, &m.flipMean})
         *v /= n;
     return m;
 }
 
-std::vector<sampling::BandError> FrameErrors::meanBands() const {
-    std::vector<sampling::BandError> mean;
+std::vector<eval::BandError> FrameErrors::meanBands() const {
+    std::vector<eval::BandError> mean;
     size_t n = 0;
     for (const auto& f : mFrames) {
         if (f.bands.empty()) continue;
         if (mean.empty()) {
             mean = f.bands;
-            for (auto& b : mean) b.rmse = 0;
+            for (auto& b : mean) b.rmse = b.flipMean = 0;
         }
-        for (size_t b = 0; b < mean.size() && b < f.bands.size(); ++b)
+        for (size_t b = 0; b < mean.size() && b < f.bands.size(); ++b) {
             mean[b].rmse += f.bands[b].rmse;
+            mean[b].flipMean += f.bands[b].flipMean;  // NaN (no ꟻLIP) stays NaN
+        }
         ++n;
     }
-    for (auto& b : mean) b.rmse /= double(std::max<size_t>(n, 1));
+    for (auto& b : mean) {
+        b.rmse /= double(std::max<size_t>(n, 1));
+        b.flipMean /= double(std::max<size_t>(n, 1));
+    }
     return mean;
 }
 
-std::vector<sampling::BandError> FrameErrors::meanLayers() const {
-    std::vector<sampling::BandError> mean;
+std::vector<eval::BandError> FrameErrors::meanLayers() const {
+    std::vector<eval::BandError> mean;
     size_t n = 0;
     for (const auto& f : mFrames) {
         if (f.layers.empty()) continue;
         if (mean.empty()) {
             mean = f.layers;
-            for (auto& l : mean) l.rmse = 0;
+            for (auto& l : mean) l.rmse = l.flipMean = 0;
         }
-        for (size_t l = 0; l < mean.size() && l < f.layers.size(); ++l)
+        for (size_t l = 0; l < mean.size() && l < f.layers.size(); ++l) {
             mean[l].rmse += f.layers[l].rmse * f.layers[l].rmse;
+            mean[l].flipMean += f.layers[l].flipMean;  // a plain mean: ꟻLIP is not squared
+        }
         ++n;
     }
-    for (auto& l : mean) l.rmse = std::sqrt(l.rmse / double(std::max<size_t>(n, 1)));
+    for (auto& l : mean) {
+        l.rmse = std::sqrt(l.rmse / double(std::max<size_t>(n, 1)));
+        l.flipMean /= double(std::max<size_t>(n, 1));
+    }
     return mean;
 }
 
@@ -263,7 +287,7 @@ std::optional<uint32_t> FrameErrors::worstFrame() const {
     return worst ? std::optional<uint32_t>(worst->frame) : std::nullopt;
 }
 
-const image::ImageMetrics& FrameErrors::metricsOf(uint32_t frame) const {
+const eval::ImageMetrics& FrameErrors::metricsOf(uint32_t frame) const {
     for (const auto& f : mFrames)
         if (f.frame == frame) return f.metrics;
     throw RuntimeError("FrameErrors: no frame " + std::to_string(frame));
@@ -284,23 +308,26 @@ nlohmann::json FrameErrors::json() const {
     using nlohmann::json;
     json frames = json::array();
     for (const auto& f : mFrames) {
-        json j = image::metricsToJson(f.metrics, mOptions);
+        json j = eval::metricsToJson(f.metrics, mOptions);
         j["frame"] = f.frame;
         j["reference"] = f.reference;
         j["temporal_error"] = f.temporal ? json(*f.temporal) : json(nullptr);
-        if (!f.bands.empty()) j["bands"] = sampling::bandErrorsToJson(f.bands);
-        if (!f.layers.empty() && mLayers)
-            j["layers"] = sampling::layerErrorsToJson(f.layers, *mLayers);
+        if (!f.bands.empty()) j["bands"] = eval::bandErrorsToJson(f.bands);
+        if (!f.layers.empty() && mLayers) j["layers"] = eval::layerErrorsToJson(f.layers, *mLayers);
+        if (!f.flip.is_null()) j["flip"] = f.flip;
         frames.push_back(j);
     }
-    json mean = image::metricsToJson(this->mean(), mOptions);
+    json mean = eval::metricsToJson(this->mean(), mOptions);
     mean.erase("temporal_error");  // per frame it is against the previous frame, see below
-    if (auto bands = meanBands(); !bands.empty()) mean["bands"] = sampling::bandErrorsToJson(bands);
+    if (auto bands = meanBands(); !bands.empty()) mean["bands"] = eval::bandErrorsToJson(bands);
     if (auto layers = meanLayers(); !layers.empty() && mLayers)
-        mean["layers"] = sampling::layerErrorsToJson(layers, *mLayers);
+        mean["layers"] = eval::layerErrorsToJson(layers, *mLayers);
     json out = {{"frames", frames}, {"mean", mean}, {"temporal_error", temporalError()}};
+    if (!mFrames.empty() && !mFrames.front().flip.is_null())
+        out["flip"] = {{"mode", mFrames.front().flip.at("mode")},
+                       {"pixels_per_degree", mFrames.front().flip.at("pixels_per_degree")}};
     if (auto worst = worstFrame()) {
-        json w = image::metricsToJson(metricsOf(*worst), mOptions);
+        json w = eval::metricsToJson(metricsOf(*worst), mOptions);
         w.erase("temporal_error");
         w["frame"] = *worst;
         out["worst"] = w;

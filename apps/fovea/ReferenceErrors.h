@@ -1,6 +1,6 @@
 // Error figures of a graph output against a reference, frame by frame (`run --reference`,
 // `bench`): where each frame's reference comes from, which output is compared, and the per-frame
-// and mean metrics of core/image/ImageMetrics.h plus the temporal error (docs/report-format.md).
+// and mean metrics of eval/metrics/ImageMetrics.h plus the temporal error (docs/report-format.md).
 #pragma once
 #include <cstdint>
 #include <filesystem>
@@ -11,8 +11,9 @@
 #include <vector>
 
 #include "core/graph/GraphDesc.h"
-#include "core/image/ImageMetrics.h"
-#include "core/sampling/EccentricityBands.h"
+#include "eval/flip/Flip.h"
+#include "eval/metrics/EccentricityBands.h"
+#include "eval/metrics/ImageMetrics.h"
 
 namespace fovea::app {
 
@@ -20,7 +21,7 @@ class GraphRunner;
 
 // The foveation layer radii of a graph: the parameters (defaults filled in) of its first enabled
 // FoveationMask pass; none when it has none.
-std::optional<sampling::LayerRadii> foveationRadiiOf(const graph::GraphDesc& desc);
+std::optional<eval::LayerRadii> foveationRadiiOf(const graph::GraphDesc& desc);
 
 // The reference of every frame. `path` is either
 //  - an image file (EXR): one converged reference for all frames (a still camera), or
@@ -70,47 +71,59 @@ std::string selectComparedOutput(const GraphRunner& runner, const std::string& r
 // compared frames of the output).
 class FrameErrors {
 public:
-    explicit FrameErrors(image::MetricOptions options = {}) : mOptions(options) {}
+    explicit FrameErrors(eval::MetricOptions options = {}) : mOptions(options) {}
     // With radii (and a camera in add): also the RMSE per foveation layer (fovea / middle /
-    // outer, seed 000 §3.2), core/sampling/EccentricityBands.h.
-    void setLayers(const sampling::LayerRadii& radii) { mLayers = radii; }
-    const std::optional<sampling::LayerRadii>& layers() const { return mLayers; }
+    // outer, seed 000 §3.2), eval/metrics/EccentricityBands.h.
+    void setLayers(const eval::LayerRadii& radii) { mLayers = radii; }
+    const std::optional<eval::LayerRadii>& layers() const { return mLayers; }
+    // Also ꟻLIP per frame (eval/flip/Flip.h) with `options`, its mean per band and layer too;
+    // `ppdFromCamera`: each frame's pixels per degree from its camera (cameraPixelsPerDegree)
+    // instead of options.pixelsPerDegree (an HMD's view rather than a monitor's).
+    void setFlip(const eval::FlipOptions& options, bool ppdFromCamera) {
+        mFlip = options;
+        mFlipPpdFromCamera = ppdFromCamera;
+    }
     // `camera` (the frame's): also the RMSE per eccentricity band (0-5, 5-20, 20+ degrees,
-    // core/sampling/EccentricityBands.h); null = no bands.
+    // eval/metrics/EccentricityBands.h); null = no bands.
     void add(uint32_t frame, const image::ImageRGBA& test, const std::string& testName,
              const image::ImageRGBA& reference, const std::string& referenceName,
              const scene::FrameCamera* camera = nullptr);
     // Mean per-band RMSE over the frames that have bands (empty when none has).
-    std::vector<sampling::BandError> meanBands() const;
+    std::vector<eval::BandError> meanBands() const;
     // Mean per-layer RMSE (RMS over the frames, so that it squares to the mean MSE) over the
     // frames that have layers (empty when none has).
-    std::vector<sampling::BandError> meanLayers() const;
+    std::vector<eval::BandError> meanLayers() const;
     // The frame with the largest RMSE (the first of equal ones); 0 frames: none.
     std::optional<uint32_t> worstFrame() const;
-    const image::ImageMetrics& metricsOf(uint32_t frame) const;
+    const eval::ImageMetrics& metricsOf(uint32_t frame) const;
     size_t count() const { return mFrames.size(); }
     // Mean of each per-frame figure; PSNR is +inf when any frame's is (identical images).
-    image::ImageMetrics mean() const;
+    eval::ImageMetrics mean() const;
     // Mean temporal error over consecutive pairs; 0 with fewer than two frames.
     double temporalError() const;
     // {"frames": [{"frame", "reference", metrics..., "temporal_error"}], "mean": {...},
     //  "temporal_error"}: the metric keys of metricsToJson; "temporal_error" of a frame is
     // against the previous compared frame (null for the first). With a camera: "bands" per frame
     // and in "mean" ([{"from", "to", "pixels", "rmse"}]); with layers also "layers" (see
-    // layerErrorsToJson). "worst": {"frame", metrics...} of worstFrame().
+    // layerErrorsToJson). "worst": {"frame", metrics...} of worstFrame(). With ꟻLIP: "flip_mean"
+    // beside the metrics (per frame, band, layer and in "mean"), "flip" (flipSettingsToJson) per
+    // frame and, without the exposures, at the top.
     nlohmann::json json() const;
 
 private:
     struct Frame {
         uint32_t frame;
         std::string reference;
-        image::ImageMetrics metrics;
+        eval::ImageMetrics metrics;
         std::optional<double> temporal;
-        std::vector<sampling::BandError> bands;
-        std::vector<sampling::BandError> layers;
+        std::vector<eval::BandError> bands;
+        std::vector<eval::BandError> layers;
+        nlohmann::json flip;  // flipSettingsToJson; null without ꟻLIP
     };
-    image::MetricOptions mOptions;
-    std::optional<sampling::LayerRadii> mLayers;
+    eval::MetricOptions mOptions;
+    std::optional<eval::LayerRadii> mLayers;
+    std::optional<eval::FlipOptions> mFlip;
+    bool mFlipPpdFromCamera = false;
     std::vector<Frame> mFrames;
     std::optional<image::ImageRGBA> mPrevious;
 };

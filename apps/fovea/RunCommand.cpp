@@ -212,7 +212,7 @@ int runCommand(const RunOptions& o) {
         referenceNoise.emplace(o.referenceNoise, "--reference-noise", width, height);
         referenceNoise->requireFrames(0, frames - 1);
     }
-    const std::optional<sampling::LayerRadii> layers = foveationRadiiOf(desc);
+    const std::optional<eval::LayerRadii> layers = foveationRadiiOf(desc);
 
     gpu::Context& ctx = openDevice(device, o.device, o.validation, o.quiet);
     uploadScene(ctx, scene, o.quiet);
@@ -295,7 +295,7 @@ int runCommand(const RunOptions& o) {
             // docs/report-format.md: the error against the truth once the reference's own
             // noise (half the floor's MSE) is taken out; 0 = within the reference's noise.
             report.reference["mean"]["rmse_noise_corrected"] =
-                image::noiseCorrectedRmse(errors.mean().mse, floor.mean().mse);
+                eval::noiseCorrectedRmse(errors.mean().mse, floor.mean().mse);
         }
     }
     // Written last: its presence and "finished" say whether the folder is complete.

@@ -1,9 +1,10 @@
 // `fovea compare TEST REFERENCE [--json]` end to end: the printed metrics match
-// core/image/ImageMetrics on images with known answers; missing files, size mismatches and NaN
-// values exit 2 naming the file. CPU only (no device is created).
+// eval/metrics/ImageMetrics (and ꟻLIP, eval/flip) on images with known answers; missing files, size
+// mismatches and NaN values exit 2 naming the file. CPU only (no device is created).
 #include <limits>
 
-#include "core/image/ImageMetrics.h"
+#include "eval/flip/Flip.h"
+#include "eval/metrics/ImageMetrics.h"
 #include "tests/graph/CliTestUtil.h"
 
 using namespace fovea::clitest;
@@ -51,7 +52,7 @@ TEST(CliCompare, JsonHasEveryMetricWithKnownValues) {
     EXPECT_EQ(j.at("peak").get<double>(), 1.0);
     EXPECT_EQ(j.at("rel_mse_epsilon").get<double>(), 1e-2);
     // relMSE and SSIM: the same numbers as the library on the images read back.
-    fovea::image::ImageMetrics m = fovea::image::computeMetrics(
+    fovea::eval::ImageMetrics m = fovea::eval::computeMetrics(
         fovea::image::readImage(tmp / "test.exr"), fovea::image::readImage(tmp / "ref.exr"));
     EXPECT_NEAR(j.at("rel_mse").get<double>(), m.relMse, 1e-9);
     EXPECT_NEAR(j.at("ssim").get<double>(), m.ssim, 1e-9);
@@ -111,4 +112,87 @@ TEST(CliCompare, InputErrorsNameTheFile) {
     expectInputError(cli({"compare", (tmp / "nan.exr").string(), a, "--json"}),
                      {"nan.exr", "(7, 5)", "NaN"});
     expectInputError(cli({"compare", a}), {"reference"});  // missing positional
+}
+
+// ꟻLIP through `compare`: the same figure as the library, HDR for an EXR reference and LDR for a
+// PNG unless --flip-mode says otherwise, the settings in "flip", the map written where asked and
+// never over an existing file without --overwrite.
+TEST(CliCompare, FlipMeanModeAndMap) {
+    TempDir tmp;
+    ImageRGBA ref = gradient(24, 16, 0.0f), test = gradient(24, 16, 0.125f);
+    fovea::image::writeExr(tmp / "ref.exr", ref);
+    fovea::image::writeExr(tmp / "test.exr", test);
+    fovea::image::writePng(tmp / "ref.png", ref, fovea::image::PngEncoding::AsIs);
+    fovea::image::writePng(tmp / "test.png", test, fovea::image::PngEncoding::AsIs);
+    const std::string map = (tmp / "map.exr").string();
+    Result r = cli({"compare", (tmp / "test.exr").string(), (tmp / "ref.exr").string(), "--json",
+                    "--flip-map", map});
+    ASSERT_EQ(r.code, 0) << r.describe();
+    json j = json::parse(r.out, nullptr, false);
+    ASSERT_FALSE(j.is_discarded()) << r.describe();
+    fovea::eval::FlipOptions hdr;
+    const fovea::eval::FlipResult expected = fovea::eval::computeFlip(
+        fovea::image::readImage(tmp / "test.exr"), fovea::image::readImage(tmp / "ref.exr"), hdr);
+    EXPECT_NEAR(j.at("flip_mean").get<double>(), expected.mean, 1e-9);
+    EXPECT_GT(expected.mean, 0.0);
+    EXPECT_EQ(j.at("flip").at("mode"), "hdr");
+    EXPECT_EQ(j.at("flip").at("exposures").get<uint32_t>(), expected.exposureCount);
+    EXPECT_NEAR(j.at("flip").at("pixels_per_degree").get<double>(), 67.0206, 1e-3);
+    EXPECT_TRUE(j.contains("rmse"));  // every metric, ꟻLIP among them
+    const ImageRGBA written = fovea::image::readImage(map);
+    ASSERT_EQ(written.width, 24u);
+    EXPECT_EQ(written.pixels[(3 * 24 + 5) * 4], expected.errors[3 * 24 + 5]);
+
+    // The map exists now: refused without --overwrite, replaced with it.
+    expectInputError(cli({"compare", (tmp / "test.exr").string(), (tmp / "ref.exr").string(),
+                          "--flip-map", map}),
+                     {"--flip-map", "map.exr", "--overwrite"});
+    EXPECT_EQ(cli({"compare", (tmp / "test.exr").string(), (tmp / "ref.exr").string(), "--flip-map",
+                   map, "--overwrite"})
+                  .code,
+              0);
+
+    // PNG: LDR by the file type; --flip gives only ꟻLIP; --ppd changes the figure.
+    r = cli(
+        {"compare", (tmp / "test.png").string(), (tmp / "ref.png").string(), "--flip", "--json"});
+    ASSERT_EQ(r.code, 0) << r.describe();
+    j = json::parse(r.out, nullptr, false);
+    EXPECT_EQ(j.at("flip").at("mode"), "ldr");
+    EXPECT_FALSE(j.contains("rmse"));
+    EXPECT_FALSE(j.at("flip").contains("exposures"));
+    const double ldrMean = j.at("flip_mean").get<double>();
+    r = cli({"compare", (tmp / "test.png").string(), (tmp / "ref.png").string(), "--flip", "--json",
+             "--ppd", "10"});
+    ASSERT_EQ(r.code, 0) << r.describe();
+    EXPECT_NE(json::parse(r.out).at("flip_mean").get<double>(), ldrMean);
+    // --flip-mode hdr on PNGs, and --no-flip leaves the key out.
+    r = cli({"compare", (tmp / "test.png").string(), (tmp / "ref.png").string(), "--json",
+             "--flip-mode", "hdr"});
+    EXPECT_EQ(json::parse(r.out).at("flip").at("mode"), "hdr");
+    r = cli({"compare", (tmp / "test.png").string(), (tmp / "ref.png").string(), "--json",
+             "--no-flip"});
+    ASSERT_EQ(r.code, 0) << r.describe();
+    EXPECT_FALSE(json::parse(r.out).contains("flip_mean"));
+    r = cli({"compare", (tmp / "test.png").string(), (tmp / "ref.png").string()});
+    EXPECT_TRUE(contains(r.out, "LDR-ꟻLIP mean")) << r.describe();
+}
+
+TEST(CliCompare, FlipOptionErrorsNameTheOption) {
+    TempDir tmp;
+    fovea::image::writeExr(tmp / "a.exr", gradient(16, 16, 0.0f));
+    fovea::image::writePng(tmp / "a.png", gradient(16, 16, 0.0f), fovea::image::PngEncoding::AsIs);
+    const std::string a = (tmp / "a.exr").string(), p = (tmp / "a.png").string();
+    expectInputError(cli({"compare", a, a, "--flip-map", (tmp / "map.tif").string()}),
+                     {"--flip-map", ".exr or .png"});
+    expectInputError(cli({"compare", a, a, "--flip-map", (tmp / "no" / "map.exr").string()}),
+                     {"--flip-map", "does not exist"});
+    expectInputError(cli({"compare", a, a, "--ppd", "0"}), {"--ppd"});
+    expectInputError(cli({"compare", a, a, "--ppd", "nan"}), {"--ppd"});
+    expectInputError(cli({"compare", a, a, "--flip-mode", "sdr"}), {"--flip-mode"});
+    expectInputError(cli({"compare", a, a, "--flip", "--no-flip"}), {"--no-flip"});
+    expectInputError(cli({"compare", a, a, "--start-exposure", "3", "--stop-exposure", "1"}),
+                     {"start exposure", "stop exposure"});
+    expectInputError(cli({"compare", p, p, "--start-exposure", "1"}),
+                     {"--start-exposure", "HDR-ꟻLIP only"});
+    EXPECT_FALSE(fs::exists(tmp / "map.tif"));
 }

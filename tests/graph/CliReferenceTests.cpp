@@ -2,7 +2,7 @@
 // report.json (docs/report-format.md "reference"), a single reference for every frame or a
 // directory of per-frame references, the default compared output, and input errors (size
 // mismatch, missing file or frame, NaN, unknown output) naming the file or option. Tiny sizes.
-#include "core/image/ImageMetrics.h"
+#include "eval/metrics/ImageMetrics.h"
 #include "tests/graph/CliTestUtil.h"
 
 using namespace fovea::clitest;
@@ -101,12 +101,12 @@ TEST(CliReference, KnownOffsetGivesKnownErrorsAndTemporalError) {
     EXPECT_NEAR(ref["frames"][0].at("rmse_percent").get<double>(), 100.0 * offset, 1e-3);
     EXPECT_NEAR(ref["frames"][0].at("psnr_db").get<double>(), 20.0 * std::log10(1.0 / offset),
                 1e-3);
-    const auto expected = fovea::image::computeMetrics(f1, shifted);
+    const auto expected = fovea::eval::computeMetrics(f1, shifted);
     EXPECT_NEAR(ref["frames"][1].at("rmse").get<double>(), expected.rmse, 1e-9);
     EXPECT_NEAR(ref["frames"][1].at("ssim").get<double>(), expected.ssim, 1e-9);
     EXPECT_NEAR(ref.at("mean").at("rmse").get<double>(), 0.5 * (offset + expected.rmse), 1e-5);
     // Temporal error: mean |ΔY| between the two compared frames (Schied et al. 2017).
-    const double temporal = fovea::image::temporalError(f0, f1);
+    const double temporal = fovea::eval::temporalError(f0, f1);
     EXPECT_GT(temporal, 0.0) << "1 spp frames differ";
     EXPECT_NEAR(ref.at("temporal_error").get<double>(), temporal, 1e-9);
     EXPECT_NEAR(ref["frames"][1].at("temporal_error").get<double>(), temporal, 1e-9);

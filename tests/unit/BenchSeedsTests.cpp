@@ -77,12 +77,12 @@ TEST(BenchSeeds, InfinitePsnrOfOneSeedMakesTheMeanInfinite) {
     const json e = combineSeedErrors(
         {1, 2}, {seedErrors(0, {0, 0, 0}, 0, {}, nullptr), seedErrors(1, {1, 1, 1}, 0, {}, 30.0)});
     EXPECT_EQ(e.at("mean").at("psnr_db"), nullptr);  // JSON null = +inf (identical images)
-    fovea::image::ImageMetrics a, b;
+    fovea::eval::ImageMetrics a, b;
     a.psnr = INFINITY;
     b.psnr = 30;
     a.rmse = 1;
     b.rmse = 2;
-    const fovea::image::ImageMetrics m = meanOverSeeds({a, b});
+    const fovea::eval::ImageMetrics m = meanOverSeeds({a, b});
     EXPECT_TRUE(std::isinf(m.psnr));
     EXPECT_DOUBLE_EQ(m.rmse, 1.5);
 }

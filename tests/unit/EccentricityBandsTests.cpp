@@ -1,15 +1,15 @@
-// Error per eccentricity band (core/sampling/EccentricityBands.h): eccentricities against the
+// Error per eccentricity band (eval/metrics/EccentricityBands.h): eccentricities against the
 // camera's field of view, band membership, per-band RMSE of errors placed in one band only, and
 // per-eye gazes in stereo.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "core/sampling/EccentricityBands.h"
+#include "eval/metrics/EccentricityBands.h"
 
 using namespace fovea;
-using sampling::eccentricityBandErrors;
-using sampling::pixelEccentricityDegrees;
+using eval::eccentricityBandErrors;
+using eval::pixelEccentricityDegrees;
 
 namespace {
 
@@ -70,7 +70,7 @@ TEST(EccentricityBands, ErrorsLandInTheirBand) {
     EXPECT_EQ(bands[1].fromDegrees, 5.0);
     EXPECT_EQ(bands[2].fromDegrees, 20.0);
     EXPECT_TRUE(std::isinf(bands[2].toDegrees));
-    auto json = sampling::bandErrorsToJson(bands);
+    auto json = eval::bandErrorsToJson(bands);
     EXPECT_TRUE(json[2]["to"].is_null());
     EXPECT_DOUBLE_EQ(json[1]["rmse"].get<double>(), bands[1].rmse);
 }

@@ -1,4 +1,4 @@
-// Error metrics (core/image/ImageMetrics.h) on images with known answers, and SSIM against an
+// Error metrics (eval/metrics/ImageMetrics.h) on images with known answers, and SSIM against an
 // independent direct-window implementation written here from Wang et al. 2004 Eqs. 14-16.
 #include <gtest/gtest.h>
 
@@ -8,10 +8,11 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
-#include "core/image/ImageMetrics.h"
 #include "core/util/Error.h"
+#include "eval/metrics/ImageMetrics.h"
 
 using namespace fovea::image;
+using namespace fovea::eval;
 
 namespace {
 

@@ -1,15 +1,15 @@
 // The evaluation protocol's figures (docs/benchmarks.md "the paper's protocol"): the error per
-// foveation layer (core/sampling/EccentricityBands.h) against an independent CPU computation on
+// foveation layer (eval/metrics/EccentricityBands.h) against an independent CPU computation on
 // a synthetic stereo image, the noise-floor correction and the Pareto front selection
-// (core/image/ImageMetrics.h) on synthetic points.
+// (eval/metrics/ImageMetrics.h) on synthetic points.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 #include <random>
 
-#include "core/image/ImageMetrics.h"
-#include "core/sampling/EccentricityBands.h"
+#include "eval/metrics/ImageMetrics.h"
+#include "eval/metrics/EccentricityBands.h"
 
 using namespace fovea;
 
@@ -44,7 +44,7 @@ TEST(ProtocolMetrics, PerLayerErrorMatchesACpuComputation) {
     const glm::vec2 gaze[2] = {{0.3f, 0.4f}, {0.7f, 0.6f}};
     auto cam = stereoCamera(w, h, gaze[0], gaze[1]);
     const image::ImageRGBA test = randomImage(w, h, 1), ref = randomImage(w, h, 2);
-    sampling::LayerRadii radii;
+    eval::LayerRadii radii;
     radii.r0 = 6;
     radii.r1 = 14;
     // The oracle: FoveationMask's rule written out (foveation_mask.comp layerOf), d = distance of
@@ -58,7 +58,7 @@ TEST(ProtocolMetrics, PerLayerErrorMatchesACpuComputation) {
             const double dy = (y + 0.5) - gaze[eye].y * h;
             const double d = std::sqrt(dx * dx + dy * dy);
             const int layer = d <= 6 ? 0 : (d <= 14 ? 1 : 2);
-            EXPECT_EQ(sampling::foveationLayerOf(cam, w, h, x, y, radii), uint32_t(layer))
+            EXPECT_EQ(eval::foveationLayerOf(cam, w, h, x, y, radii), uint32_t(layer))
                 << x << "," << y;
             for (int c = 0; c < 3; ++c) {
                 const double e = double(test.pixels[(size_t(y) * w + x) * 4 + c]) -
@@ -67,7 +67,7 @@ TEST(ProtocolMetrics, PerLayerErrorMatchesACpuComputation) {
             }
             ++count[layer];
         }
-    const auto layers = sampling::foveationLayerErrors(test, ref, cam, radii);
+    const auto layers = eval::foveationLayerErrors(test, ref, cam, radii);
     ASSERT_EQ(layers.size(), 3u);
     for (int l = 0; l < 3; ++l) {
         ASSERT_GT(count[l], 0u) << l;
@@ -77,7 +77,7 @@ TEST(ProtocolMetrics, PerLayerErrorMatchesACpuComputation) {
     }
     EXPECT_EQ(layers[1].fromDegrees, 6.0);
     EXPECT_EQ(layers[2].fromDegrees, 14.0);
-    const auto json = sampling::layerErrorsToJson(layers, radii);
+    const auto json = eval::layerErrorsToJson(layers, radii);
     EXPECT_EQ(json[0]["layer"], "fovea");
     EXPECT_EQ(json[2]["layer"], "outer");
     EXPECT_EQ(json[1]["unit"], "pixels");
@@ -86,9 +86,9 @@ TEST(ProtocolMetrics, PerLayerErrorMatchesACpuComputation) {
     image::ImageRGBA shifted = ref;
     for (uint32_t y = 0; y < h; ++y)
         for (uint32_t x = 0; x < w; ++x)
-            if (sampling::foveationLayerOf(cam, w, h, x, y, radii) == 1)
+            if (eval::foveationLayerOf(cam, w, h, x, y, radii) == 1)
                 for (int c = 0; c < 3; ++c) shifted.pixels[(size_t(y) * w + x) * 4 + c] += 0.25f;
-    const auto only = sampling::foveationLayerErrors(shifted, ref, cam, radii);
+    const auto only = eval::foveationLayerErrors(shifted, ref, cam, radii);
     EXPECT_EQ(only[0].rmse, 0.0);
     EXPECT_NEAR(only[1].rmse, 0.25, 1e-6);
     EXPECT_EQ(only[2].rmse, 0.0);
@@ -97,8 +97,8 @@ TEST(ProtocolMetrics, PerLayerErrorMatchesACpuComputation) {
     radii.r0 = 5;
     radii.r1 = 12;
     for (uint32_t x = 0; x < w; x += 7) {
-        const double e = sampling::pixelEccentricityDegrees(cam, w, h, x, 20);
-        EXPECT_EQ(sampling::foveationLayerOf(cam, w, h, x, 20, radii),
+        const double e = eval::pixelEccentricityDegrees(cam, w, h, x, 20);
+        EXPECT_EQ(eval::foveationLayerOf(cam, w, h, x, 20, radii),
                   e <= 5 ? 0u : (e <= 12 ? 1u : 2u));
     }
 }
@@ -106,9 +106,9 @@ TEST(ProtocolMetrics, PerLayerErrorMatchesACpuComputation) {
 TEST(ProtocolMetrics, NoiseCorrectedRmseTakesOutHalfTheFloor) {
     // Error 0.05 against the truth, reference noise 0.03 (floor MSE 2 * 0.03^2): measured MSE
     // 0.05^2 + 0.03^2, corrected back to 0.05.
-    EXPECT_NEAR(image::noiseCorrectedRmse(0.05 * 0.05 + 0.03 * 0.03, 2 * 0.03 * 0.03), 0.05, 1e-12);
-    EXPECT_DOUBLE_EQ(image::noiseCorrectedRmse(0.0004, 0.0), 0.02);
-    EXPECT_EQ(image::noiseCorrectedRmse(0.0001, 0.001), 0.0) << "within the reference's noise";
+    EXPECT_NEAR(eval::noiseCorrectedRmse(0.05 * 0.05 + 0.03 * 0.03, 2 * 0.03 * 0.03), 0.05, 1e-12);
+    EXPECT_DOUBLE_EQ(eval::noiseCorrectedRmse(0.0004, 0.0), 0.02);
+    EXPECT_EQ(eval::noiseCorrectedRmse(0.0001, 0.001), 0.0) << "within the reference's noise";
 }
 
 TEST(ProtocolMetrics, ParetoFrontOfSyntheticPoints) {
@@ -118,10 +118,10 @@ TEST(ProtocolMetrics, ParetoFrontOfSyntheticPoints) {
     // 0: optimal (nothing faster is as accurate); 1 and 3: equal, both optimal; 2: optimal
     // (most accurate at 20); 4: beaten by 0; 5: beaten by 2 (same error, slower); 6: NaN.
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    const auto p = image::paretoOptimal({10, 5, 20, 5, 12, 30, nan}, {2, 4, 1, 4, 3, 1, 0});
+    const auto p = eval::paretoOptimal({10, 5, 20, 5, 12, 30, nan}, {2, 4, 1, 4, 3, 1, 0});
     EXPECT_EQ(p, (std::vector<bool>{true, true, true, true, false, false, false}));
-    EXPECT_EQ(image::paretoOptimal({1}, {1}), std::vector<bool>{true});
-    EXPECT_TRUE(image::paretoOptimal({}, {}).empty());
+    EXPECT_EQ(eval::paretoOptimal({1}, {1}), std::vector<bool>{true});
+    EXPECT_TRUE(eval::paretoOptimal({}, {}).empty());
     // One point better in both beats every other one.
-    EXPECT_EQ(image::paretoOptimal({3, 1, 2}, {3, 1, 2}), (std::vector<bool>{false, true, false}));
+    EXPECT_EQ(eval::paretoOptimal({3, 1, 2}, {3, 1, 2}), (std::vector<bool>{false, true, false}));
 }

@@ -3,13 +3,14 @@
 // per-frame error figures of `run --reference` / `bench`. compareImages (ImageCompare.h) stays
 // the golden-test check; these are the figures the papers report.
 #pragma once
+#include <limits>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
 #include "core/image/ImageIO.h"
 
-namespace fovea::image {
+namespace fovea::eval {
 
 struct MetricOptions {
     // Signal peak: the PSNR numerator and the SSIM dynamic range L (Wang et al. 2004 Eq. 7).
@@ -31,25 +32,30 @@ struct ImageMetrics {
     // Mean |Y(test) - Y(reference)| (Rec. 709 luminance): the temporal error when the two
     // images are consecutive frames (reference = the earlier one).
     double meanAbsLuminanceDiff = 0;
+    // Mean ꟻLIP (eval/flip/Flip.h) when it was computed (computeMetrics does not: the caller
+    // chooses LDR or HDR and the viewing distance), NaN otherwise.
+    double flipMean = std::numeric_limits<double>::quiet_NaN();
 };
 
 // Throws InputError naming the images when their sizes differ or an RGB value is NaN/Inf.
-ImageMetrics computeMetrics(const ImageRGBA& test, const ImageRGBA& reference,
+ImageMetrics computeMetrics(const image::ImageRGBA& test, const image::ImageRGBA& reference,
                             const MetricOptions& options = {},
                             const std::string& testName = "test image",
                             const std::string& referenceName = "reference image");
 
 // The metrics as JSON (keys of docs/metrics.md, as `fovea compare --json` prints them):
 // mse, rmse, rmse_percent, rel_mse, rel_mse_epsilon, psnr_db (null when infinite), peak, ssim,
-// temporal_error. For report.json / bench.json too, so every tool uses the same keys.
+// temporal_error, and flip_mean when metrics.flipMean is a number. For report.json / bench.json
+// too, so every tool uses the same keys.
 nlohmann::json metricsToJson(const ImageMetrics& metrics, const MetricOptions& options);
 
 // Throws InputError "<name>: pixel (x, y) channel G is NaN" at the first non-finite RGB value.
-void checkFinite(const ImageRGBA& image, const std::string& name);
+void checkFinite(const image::ImageRGBA& image, const std::string& name);
 // Throws InputError naming both images and their sizes when they differ.
-// The same check on header sizes (readImageSize), before anything is decoded.
-void checkSameSize(ImageSize a, ImageSize b, const std::string& nameA, const std::string& nameB);
-void checkSameSize(const ImageRGBA& a, const ImageRGBA& b, const std::string& nameA,
+// The same check on header sizes (image::readImageSize), before anything is decoded.
+void checkSameSize(image::ImageSize a, image::ImageSize b, const std::string& nameA,
+                   const std::string& nameB);
+void checkSameSize(const image::ImageRGBA& a, const image::ImageRGBA& b, const std::string& nameA,
                    const std::string& nameB);
 
 // Rec. 709 / sRGB primaries luminance of linear RGB.
@@ -67,11 +73,11 @@ double ssimPlane(const std::vector<double>& x, const std::vector<double>& y, uin
 // Temporal error of two consecutive frames (Schied et al. 2017, as used in seed 003 P2 §7.1):
 // mean over pixels of |Y(current) - Y(previous)|. Checks sizes and finiteness like
 // computeMetrics.
-double temporalError(const ImageRGBA& previous, const ImageRGBA& current,
+double temporalError(const image::ImageRGBA& previous, const image::ImageRGBA& current,
                      const std::string& previousName = "previous frame",
                      const std::string& currentName = "current frame");
 // Mean of temporalError over the consecutive pairs of `frames` (0 for fewer than two frames).
-double temporalError(const std::vector<ImageRGBA>& frames);
+double temporalError(const std::vector<image::ImageRGBA>& frames);
 
 // The reference's noise floor (docs/benchmarks.md, "the paper's protocol"). Two references R1,
 // R2 of one scene rendered with different seeds are truth + n1 and truth + n2 with independent
@@ -86,4 +92,4 @@ double noiseCorrectedRmse(double mse, double floorMse);
 // points are never optimal and dominate nothing.
 std::vector<bool> paretoOptimal(const std::vector<double>& cost, const std::vector<double>& error);
 
-}  // namespace fovea::image
+}  // namespace fovea::eval

@@ -4,18 +4,21 @@
 // test image against a reference over the pixels of each band, 0-5, 5-20 and 20+ degrees.
 #pragma once
 #include <cstdint>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <vector>
 
 #include "core/image/ImageIO.h"
 #include "core/scene/Camera.h"
 
-namespace fovea::sampling {
+namespace fovea::eval {
 
 struct BandError {
     double fromDegrees = 0, toDegrees = 0;  // [from, to); to = +inf for the last band
     uint64_t pixels = 0;
     double rmse = 0;  // sqrt(mean over the band's pixels and R, G, B of the squared difference)
+    // Mean of a per-pixel ꟻLIP map over the band's pixels, when one was given; NaN otherwise.
+    double flipMean = std::numeric_limits<double>::quiet_NaN();
 };
 
 // The bands' lower edges: 0, 5 and 20 degrees (the last band is open).
@@ -31,13 +34,19 @@ inline constexpr double kEquirectBandEdges[] = {0.0, 5.0, 10.0, 20.0, 80.0};
 double pixelEccentricityDegrees(const scene::FrameCamera& camera, uint32_t width, uint32_t height,
                                 uint32_t x, uint32_t y);
 
+// Pixels per degree of visual angle at the centre of a width x height image (of one eye's part
+// of a side-by-side image) seen through `camera`: (height / 2) / tan(yfov / 2) · π / 180 for a
+// pinhole, width / 360 for an equirect image. The viewing condition of ꟻLIP for an HMD bench.
+double cameraPixelsPerDegree(const scene::FrameCamera& camera, uint32_t width, uint32_t height);
+
 // Per-band RMSE of `test` against `reference` (same size; the caller checks). A band without
-// pixels has rmse 0.
+// pixels has rmse 0. With `flipMap` (width * height ꟻLIP values): also each band's mean ꟻLIP.
 std::vector<BandError> eccentricityBandErrors(const image::ImageRGBA& test,
                                               const image::ImageRGBA& reference,
-                                              const scene::FrameCamera& camera);
+                                              const scene::FrameCamera& camera,
+                                              const std::vector<float>* flipMap = nullptr);
 
-// [{"from", "to" (null = open), "pixels", "rmse"}]
+// [{"from", "to" (null = open), "pixels", "rmse", "flip_mean" (when computed)}]
 nlohmann::json bandErrorsToJson(const std::vector<BandError>& bands);
 
 // The layers of seed 000 §3.2 (Peres et al. 2023, Table 1): fovea d <= r0, middle r0 < d <= r1,
@@ -62,9 +71,11 @@ uint32_t foveationLayerOf(const scene::FrameCamera& camera, uint32_t width, uint
 std::vector<BandError> foveationLayerErrors(const image::ImageRGBA& test,
                                             const image::ImageRGBA& reference,
                                             const scene::FrameCamera& camera,
-                                            const LayerRadii& radii);
+                                            const LayerRadii& radii,
+                                            const std::vector<float>* flipMap = nullptr);
 
-// [{"layer": "fovea"|"middle"|"outer", "from", "to" (null = open), "unit", "pixels", "rmse"}]
+// [{"layer": "fovea"|"middle"|"outer", "from", "to" (null = open), "unit", "pixels", "rmse",
+//   "flip_mean" (when computed)}]
 nlohmann::json layerErrorsToJson(const std::vector<BandError>& layers, const LayerRadii& radii);
 
-}  // namespace fovea::sampling
+}  // namespace fovea::eval

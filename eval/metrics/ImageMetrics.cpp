@@ -1,4 +1,4 @@
-#include "core/image/ImageMetrics.h"
+#include "eval/metrics/ImageMetrics.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "core/util/Error.h"
 
-namespace fovea::image {
+namespace fovea::eval {
 
 namespace {
 
@@ -17,17 +17,17 @@ constexpr double kSsimSigma = 1.5;
 constexpr double kSsimK1 = 0.01;
 constexpr double kSsimK2 = 0.03;
 
-std::string sizeText(const ImageRGBA& image) {
+std::string sizeText(const image::ImageRGBA& image) {
     return std::to_string(image.width) + "x" + std::to_string(image.height);
 }
 
-void checkPixelCount(const ImageRGBA& image, const std::string& name) {
+void checkPixelCount(const image::ImageRGBA& image, const std::string& name) {
     if (image.pixels.size() != size_t(image.width) * image.height * 4)
         throw InputError(name + ": holds " + std::to_string(image.pixels.size()) +
                          " values, expected " + sizeText(image) + " x 4");
 }
 
-void checkPair(const ImageRGBA& a, const ImageRGBA& b, const std::string& nameA,
+void checkPair(const image::ImageRGBA& a, const image::ImageRGBA& b, const std::string& nameA,
                const std::string& nameB) {
     checkPixelCount(a, nameA);
     checkPixelCount(b, nameB);
@@ -59,7 +59,7 @@ int windowFor(uint32_t extent) {
 
 }  // namespace
 
-void checkFinite(const ImageRGBA& image, const std::string& name) {
+void checkFinite(const image::ImageRGBA& image, const std::string& name) {
     static const char* kChannel[3] = {"R", "G", "B"};
     for (uint32_t y = 0; y < image.height; ++y)
         for (uint32_t x = 0; x < image.width; ++x)
@@ -75,8 +75,9 @@ void checkFinite(const ImageRGBA& image, const std::string& name) {
             }
 }
 
-void checkSameSize(ImageSize a, ImageSize b, const std::string& nameA, const std::string& nameB) {
-    auto text = [](ImageSize s) {
+void checkSameSize(image::ImageSize a, image::ImageSize b, const std::string& nameA,
+                   const std::string& nameB) {
+    auto text = [](image::ImageSize s) {
         return std::to_string(s.width) + "x" + std::to_string(s.height);
     };
     if (a.width != b.width || a.height != b.height)
@@ -84,9 +85,10 @@ void checkSameSize(ImageSize a, ImageSize b, const std::string& nameA, const std
                          ": images of different sizes cannot be compared");
 }
 
-void checkSameSize(const ImageRGBA& a, const ImageRGBA& b, const std::string& nameA,
+void checkSameSize(const image::ImageRGBA& a, const image::ImageRGBA& b, const std::string& nameA,
                    const std::string& nameB) {
-    checkSameSize(ImageSize{a.width, a.height}, ImageSize{b.width, b.height}, nameA, nameB);
+    checkSameSize(image::ImageSize{a.width, a.height}, image::ImageSize{b.width, b.height}, nameA,
+                  nameB);
 }
 
 double ssimPlane(const std::vector<double>& x, const std::vector<double>& y, uint32_t width,
@@ -144,7 +146,7 @@ double ssimPlane(const std::vector<double>& x, const std::vector<double>& y, uin
     return sum / double(outW * outH);  // outW, outH >= 1
 }
 
-ImageMetrics computeMetrics(const ImageRGBA& test, const ImageRGBA& reference,
+ImageMetrics computeMetrics(const image::ImageRGBA& test, const image::ImageRGBA& reference,
                             const MetricOptions& options, const std::string& testName,
                             const std::string& referenceName) {
     if (!(options.peak > 0) || !std::isfinite(options.peak))
@@ -201,10 +203,11 @@ nlohmann::json metricsToJson(const ImageMetrics& m, const MetricOptions& options
     j["peak"] = options.peak;
     j["ssim"] = m.ssim;
     j["temporal_error"] = m.meanAbsLuminanceDiff;
+    if (!std::isnan(m.flipMean)) j["flip_mean"] = m.flipMean;
     return j;
 }
 
-double temporalError(const ImageRGBA& previous, const ImageRGBA& current,
+double temporalError(const image::ImageRGBA& previous, const image::ImageRGBA& current,
                      const std::string& previousName, const std::string& currentName) {
     checkPair(previous, current, previousName, currentName);
     const size_t pixels = size_t(current.width) * current.height;
@@ -217,7 +220,7 @@ double temporalError(const ImageRGBA& previous, const ImageRGBA& current,
     return sum / double(pixels);  // pixels >= 1 (checkPair)
 }
 
-double temporalError(const std::vector<ImageRGBA>& frames) {
+double temporalError(const std::vector<image::ImageRGBA>& frames) {
     if (frames.size() < 2) return 0.0;
     double sum = 0;
     for (size_t i = 1; i < frames.size(); ++i)
@@ -245,4 +248,4 @@ std::vector<bool> paretoOptimal(const std::vector<double>& cost, const std::vect
     return optimal;
 }
 
-}  // namespace fovea::image
+}  // namespace fovea::eval
