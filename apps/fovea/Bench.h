@@ -9,9 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "apps/fovea/ReferenceErrors.h"
 #include "apps/fovea/Report.h"
-#include "eval/metrics/ImageMetrics.h"
 #include "eval/metrics/EccentricityBands.h"
+#include "eval/metrics/ImageMetrics.h"
 
 namespace fovea::app {
 
@@ -62,6 +63,8 @@ struct BenchSpec {
     std::vector<BenchAgainst> against;
     // Radii of the per-layer errors; unset: those of the first graph with a FoveationMask pass.
     std::optional<eval::LayerRadii> layers;
+    // `flip`: ꟻLIP of every graph's output (and of the noise floor), docs/bench.md.
+    FlipChoice flip;
     std::vector<BenchGraph> graphs;
 };
 

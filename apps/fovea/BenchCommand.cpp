@@ -183,12 +183,17 @@ SeedRun runBenchSeed(const BenchSpec& spec, const BenchGraph& g, uint64_t seed, 
         if (m.second) m.second->choose(run.output);
     }
     run.errors.assign(references.size(), FrameErrors());
-    for (auto& e : run.errors)
+    const bool displayEncoded = runner.displayEncoded(run.output);
+    for (auto& e : run.errors) {
         if (layers) e.setLayers(*layers);
+        e.setFlip(spec.flip, displayEncoded);
+    }
     if (floors) {
         floors->assign(references.size(), FrameErrors());
-        for (auto& e : *floors)
+        for (auto& e : *floors) {
             if (layers) e.setLayers(*layers);
+            e.setFlip(spec.flip, displayEncoded);
+        }
     }
     std::vector<size_t> warmSamples;  // per node: gpuMs entries of the warm-up
     std::vector<uint64_t> warmExecutions;

@@ -149,6 +149,31 @@ std::vector<uint64_t> parseSeeds(const Reader& r, const json& j) {
     return seeds;
 }
 
+// `flip`: false (no ꟻLIP), true (the defaults) or {"mode": "auto"|"ldr"|"hdr", "ppd": number |
+// "camera"} (ReferenceErrors.h FlipChoice).
+FlipChoice parseFlip(const Reader& r, const json& f) {
+    FlipChoice choice;
+    if (f.is_boolean()) {
+        choice.enabled = f.get<bool>();
+        return choice;
+    }
+    if (!f.is_object()) r.fail("/flip", "expected true, false or {\"mode\", \"ppd\"}");
+    r.keys(f, "/flip", {"mode", "ppd"});
+    if (f.contains("mode")) {
+        choice.mode = r.string(f["mode"], "/flip/mode");
+        if (choice.mode != "auto" && choice.mode != "ldr" && choice.mode != "hdr")
+            r.fail("/flip/mode", "expected \"auto\", \"ldr\" or \"hdr\"");
+    }
+    if (f.contains("ppd")) {
+        const json& p = f["ppd"];
+        const std::string text =
+            p.is_string() ? p.get<std::string>() : (p.is_number() ? p.dump() : std::string());
+        if (!parseFlipPpd(text, choice))
+            r.fail("/flip/ppd", "expected \"camera\" or a finite number > 0");
+    }
+    return choice;
+}
+
 }  // namespace
 
 BenchSpec parseBenchFile(const fs::path& file) {
@@ -156,10 +181,11 @@ BenchSpec parseBenchFile(const fs::path& file) {
     // parseJsonText: line and column of a syntax error, the nesting and NUL-byte limits.
     json j = parseJsonText(readUserTextFile(file, kMaxJsonFileBytes, "bench file"), name);
     Reader r(name);
-    r.keys(j, "",
-           {"version",      "name",      "description", "scene",        "camera", "size",  "stereo",
-            "camera_model", "sun",       "env",         "frames",       "warmup", "seed",  "seeds",
-            "output",       "reference", "noise_floor", "also_against", "layers", "graphs"});
+    r.keys(
+        j, "",
+        {"version",      "name",      "description", "scene",        "camera", "size", "stereo",
+         "camera_model", "sun",       "env",         "frames",       "warmup", "seed", "seeds",
+         "output",       "reference", "noise_floor", "also_against", "layers", "flip", "graphs"});
     BenchSpec spec;
     spec.file = name;
     if (r.count(r.need(j, "", "version"), "/version", 1, 1) != 1) r.fail("/version", "expected 1");
@@ -236,6 +262,7 @@ BenchSpec parseBenchFile(const fs::path& file) {
             spec.against.push_back(std::move(g));
         }
     }
+    if (j.contains("flip")) spec.flip = parseFlip(r, j["flip"]);
     if (j.contains("layers")) {
         const json& l = j["layers"];
         r.keys(l, "/layers", {"r0", "r1", "unit"});

@@ -189,7 +189,7 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
     const json* floor = floorOf(header, "reference");
     const auto bandColumnList = bandColumns(results);
     c << "label,file,output,frame_ms_median,frame_ms_mean,speedup,rmse_percent,rmse,rel_mse,"
-         "psnr_db,ssim,temporal_error";
+         "psnr_db,ssim,temporal_error,flip_mean";
     for (const auto& column : bandColumnList) c << "," << column.second;
     c << ","
          "rmse_percent_noise_floor,rmse_percent_above_noise,worst_frame,worst_rmse_percent,"
@@ -206,7 +206,7 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
           << "," << benchNumber(r.speedup, "%.6g") << "," << benchNumber(m.rmsePercent, "%.6g")
           << "," << benchNumber(m.rmse, "%.6g") << "," << benchNumber(m.relMse, "%.6g") << ","
           << benchNumber(m.psnr, "%.6g") << "," << benchNumber(m.ssim, "%.6g") << ","
-          << benchNumber(r.temporalError, "%.6g");
+          << benchNumber(r.temporalError, "%.6g") << "," << benchNumber(m.flipMean, "%.6g");
         for (double v : bandRmse(r.errors, bandColumnList.size()))
             c << "," << benchNumber(v, "%.6g");
         const auto [worstFrame, worstPercent] = worstOf(r.errors);
@@ -244,9 +244,9 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
              "seeds of each seed's mean, ± their standard error.";
     }
     t << "\n\n"
-      << "| Graph | Output | Frame ms (median) | Speedup | RMSE % | PSNR dB | SSIM | Temporal "
-         "error | Pareto "
-         "|\n|---|---|---:|---:|---:|---:|---:|---:|---|\n";
+      << "| Graph | Output | Frame ms (median) | Speedup | RMSE % | PSNR dB | SSIM | ꟻLIP | "
+         "Temporal error | Pareto "
+         "|\n|---|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
     for (const auto& r : results) {
         const auto& m = r.meanErrors;
         t << "| " << benchMarkdown(r.graph.label) << " | " << benchMarkdown(r.output) << " | "
@@ -254,7 +254,9 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
           << " | " << benchNumber(m.rmsePercent, "%.4f")
           << standardErrorSuffix(r.errors, "rmse_percent", "%.4f") << " | "
           << benchNumber(m.psnr, "%.2f") << " | " << benchNumber(m.ssim, "%.4f") << " | "
-          << benchNumber(r.temporalError, "%.5f") << " | " << (r.pareto ? "**yes**" : "") << " |\n";
+          << benchNumber(m.flipMean, "%.4f") << standardErrorSuffix(r.errors, "flip_mean", "%.4f")
+          << " | " << benchNumber(r.temporalError, "%.5f") << " | " << (r.pareto ? "**yes**" : "")
+          << " |\n";
     }
     t << "\nPareto: no other graph of this run is both faster (median frame ms) and closer to the "
          "reference (RMSE %); the front is marked in the plot.\n";

@@ -102,7 +102,8 @@ const Figure kFigures[] = {{"rmse", nullptr, 0, 1},
                            {"rmse_20deg_plus", "bands", 2, 1},
                            {"rmse_percent_fovea", "layers", 0, 100},
                            {"rmse_percent_middle", "layers", 1, 100},
-                           {"rmse_percent_outer", "layers", 2, 100}};
+                           {"rmse_percent_outer", "layers", 2, 100},
+                           {"flip_mean", nullptr, 0, 1}};
 
 // A figure of an errors "mean" (or "standard_error") object; NaN when it has none.
 double figureOf(const json& mean, const Figure& f) {
@@ -180,7 +181,7 @@ eval::ImageMetrics meanOverSeeds(const std::vector<eval::ImageMetrics>& perSeed)
     for (auto field :
          {&eval::ImageMetrics::mse, &eval::ImageMetrics::rmse, &eval::ImageMetrics::rmsePercent,
           &eval::ImageMetrics::relMse, &eval::ImageMetrics::psnr, &eval::ImageMetrics::ssim,
-          &eval::ImageMetrics::meanAbsLuminanceDiff})
+          &eval::ImageMetrics::meanAbsLuminanceDiff, &eval::ImageMetrics::flipMean})
         mean(field);
     return m;
 }

@@ -42,6 +42,10 @@ struct RunOptions {
     // --reference-noise: a second reference with another seed; report.json gets the noise floor
     // (its errors against --reference) next to the errors.
     std::string referenceNoise;
+    // ꟻLIP of the compared output (ReferenceErrors.h FlipChoice): --no-flip, --flip-mode
+    // auto|ldr|hdr, --flip-ppd NUMBER|camera ("" = the default observer).
+    bool noFlip = false;
+    std::string flipMode = "auto", flipPpd;
     // `fovea reference --path-frame F`: every frame uses camera-path frame F (a converged
     // reference of one frame of a moving camera path).
     std::optional<uint64_t> fixedCameraFrame;

@@ -86,6 +86,10 @@ std::string GraphRunner::firstFloatOutput() const {
     return "";
 }
 
+bool GraphRunner::displayEncoded(const std::string& resource) const {
+    return gpu::formatIsUnorm8(mGraph.image(resource).format());
+}
+
 ReportInputs GraphRunner::reportBase(const std::string& graphFile, uint32_t frames) const {
     ReportInputs report;
     report.graphFile = graphFile;

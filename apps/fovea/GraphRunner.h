@@ -52,6 +52,9 @@ public:
     // The first marked output of the graph file whose image is a float format (not 8-bit UNORM,
     // not uint) and whose pass is alive; "" when there is none.
     std::string firstFloatOutput() const;
+    // True when `resource` is an 8-bit UNORM image: display-encoded values (e.g. Tonemap's ldr,
+    // sRGB applied), which ꟻLIP evaluates as LDR.
+    bool displayEncoded(const std::string& resource) const;
 
     graph::RenderGraph& graph() { return mGraph; }
     const graph::RenderGraph& graph() const { return mGraph; }

@@ -9,6 +9,8 @@
 #include "apps/fovea/GraphRunner.h"
 #include "apps/fovea/Progress.h"
 #include "apps/fovea/ReferenceErrors.h"
+#include "core/graph/Param.h"
+#include "core/graph/PassRegistry.h"
 #include "core/util/Error.h"
 
 namespace fovea::app {
@@ -49,18 +51,21 @@ void addReferenceCommand(CLI::App& app, ReferenceOptions& o) {
 uint32_t referenceSamplesPerFrame(const graph::GraphDesc& desc, const std::string& graphFile) {
     uint32_t perFrame = 0;
     for (const auto& p : desc.passes) {
-        if (p.type != "PathTrace") continue;
-        uint32_t spp = 1;
-        if (auto it = p.params.find("spp"); it != p.params.end() && it->is_number_unsigned())
-            spp = it->get<uint32_t>();
-        if (perFrame != 0 && spp != perFrame)
+        if (!p.enabled) continue;
+        // The pass reports its samples per frame from its parameters as loaded (Pass::facts).
+        auto pass = graph::passRegistry().create(p.type, p.name);
+        graph::loadParams(*pass, p.params, graphFile, p.pointer + "/params");
+        const std::optional<uint32_t> spp = pass->facts().samplesPerFrame;
+        if (!spp) continue;
+        if (perFrame != 0 && *spp != perFrame)
             throw InputError(graphFile, "/passes",
-                             "reference graphs need one samples-per-frame count; PathTrace passes "
-                             "disagree");
-        perFrame = spp;
+                             "reference graphs need one samples-per-frame count; path tracing "
+                             "passes disagree");
+        perFrame = *spp;
     }
     if (perFrame == 0)
-        throw InputError(graphFile, "/passes", "a reference graph needs a PathTrace pass");
+        throw InputError(graphFile, "/passes",
+                         "a reference graph needs a path tracing pass (e.g. PathTrace)");
     return perFrame;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <regex>
 
 #include "apps/fovea/GraphRunner.h"
@@ -143,15 +144,11 @@ const image::ImageRGBA& ReferenceSource::forFrame(uint32_t frame) {
 
 std::optional<eval::LayerRadii> foveationRadiiOf(const graph::GraphDesc& desc) {
     for (const auto& p : desc.passes) {
-        if (p.type != "FoveationMask" || !p.enabled) continue;
+        if (!p.enabled) continue;
+        // The pass reports its radii from its parameters as loaded (defaults included).
         auto pass = graph::passRegistry().create(p.type, p.name);
         graph::loadParams(*pass, p.params, desc.file, p.pointer + "/params");
-        const nlohmann::json values = graph::saveParams(*pass, false);
-        eval::LayerRadii radii;
-        radii.r0 = values.at("r0").get<double>();
-        radii.r1 = values.at("r1").get<double>();
-        radii.degrees = values.at("radiusUnit").get<std::string>() == "degrees";
-        return radii;
+        if (auto layers = pass->facts().foveationLayers) return *layers;
     }
     return std::nullopt;
 }
@@ -181,6 +178,34 @@ std::string selectComparedOutput(const GraphRunner& runner, const std::string& r
     if (!runner.alive(requested))
         throw InputError(option, "", "output '" + requested + "' is culled in this run");
     return requested;
+}
+
+bool parseFlipPpd(const std::string& text, FlipChoice& choice) {
+    if (text == "camera") {
+        choice.ppdFromCamera = true;
+        return true;
+    }
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || !std::isfinite(v) || !(v > 0)) return false;
+    choice.ppd = v;
+    choice.ppdFromCamera = false;
+    return true;
+}
+
+void FrameErrors::setFlip(const FlipChoice& choice, bool displayEncoded) {
+    if (!choice.enabled) {
+        mFlip.reset();
+        return;
+    }
+    eval::FlipOptions options;
+    options.mode = choice.mode == "ldr"   ? eval::FlipMode::Ldr
+                   : choice.mode == "hdr" ? eval::FlipMode::Hdr
+                   : displayEncoded       ? eval::FlipMode::Ldr
+                                          : eval::FlipMode::Hdr;
+    options.pixelsPerDegree = choice.ppd;
+    mFlip = options;
+    mFlipPpdFromCamera = choice.ppdFromCamera;
 }
 
 void FrameErrors::add(uint32_t frame, const image::ImageRGBA& test, const std::string& testName,

@@ -19,8 +19,8 @@ namespace fovea::app {
 
 class GraphRunner;
 
-// The foveation layer radii of a graph: the parameters (defaults filled in) of its first enabled
-// FoveationMask pass; none when it has none.
+// The foveation layer radii of a graph: those its first enabled pass that has layers reports
+// (Pass::facts, e.g. FoveationMask's r0, r1 and radiusUnit); none when no pass has.
 std::optional<eval::LayerRadii> foveationRadiiOf(const graph::GraphDesc& desc);
 
 // The reference of every frame. `path` is either
@@ -67,6 +67,19 @@ private:
 std::string selectComparedOutput(const GraphRunner& runner, const std::string& requested,
                                  const std::string& option);
 
+// How `run --reference` and `bench` evaluate ꟻLIP (docs/metrics.md "ꟻLIP"); on by default.
+struct FlipChoice {
+    bool enabled = true;
+    // "auto": LDR-ꟻLIP for a display-encoded output (8-bit UNORM, e.g. Tonemap's ldr), HDR-ꟻLIP
+    // for a linear one; "ldr" | "hdr".
+    std::string mode = "auto";
+    double ppd = 0;              // 0: ꟻLIP's default observer (67.02 ppd)
+    bool ppdFromCamera = false;  // "camera": each frame's camera (eval::cameraPixelsPerDegree)
+};
+// Reads a pixels-per-degree setting: "camera" or a finite number > 0 into `choice`; false when
+// `text` is neither.
+bool parseFlipPpd(const std::string& text, FlipChoice& choice);
+
 // Per-frame metrics and the temporal error (Schied et al. 2017: mean |ΔY| between consecutive
 // compared frames of the output).
 class FrameErrors {
@@ -76,13 +89,10 @@ public:
     // outer, seed 000 §3.2), eval/metrics/EccentricityBands.h.
     void setLayers(const eval::LayerRadii& radii) { mLayers = radii; }
     const std::optional<eval::LayerRadii>& layers() const { return mLayers; }
-    // Also ꟻLIP per frame (eval/flip/Flip.h) with `options`, its mean per band and layer too;
-    // `ppdFromCamera`: each frame's pixels per degree from its camera (cameraPixelsPerDegree)
-    // instead of options.pixelsPerDegree (an HMD's view rather than a monitor's).
-    void setFlip(const eval::FlipOptions& options, bool ppdFromCamera) {
-        mFlip = options;
-        mFlipPpdFromCamera = ppdFromCamera;
-    }
+    // Also ꟻLIP per frame (eval/flip/Flip.h) as `choice` says, its mean per band and layer too.
+    // `displayEncoded`: the compared output holds display-encoded values (an 8-bit UNORM image),
+    // which mode "auto" evaluates with LDR-ꟻLIP (HDR-ꟻLIP otherwise).
+    void setFlip(const FlipChoice& choice, bool displayEncoded);
     // `camera` (the frame's): also the RMSE per eccentricity band (0-5, 5-20, 20+ degrees,
     // eval/metrics/EccentricityBands.h); null = no bands.
     void add(uint32_t frame, const image::ImageRGBA& test, const std::string& testName,

@@ -62,6 +62,24 @@ void addRunCommand(CLI::App& app, RunOptions& o) {
     cmd->add_option("--reference-output", o.referenceOutput,
                     "graph output compared with --reference (default: the first float output)")
         ->check(nonEmptyValue());
+    auto* noFlip = cmd->add_flag("--no-flip", o.noFlip, "with --reference: skip ꟻLIP");
+    cmd->add_option("--flip-mode", o.flipMode,
+                    "with --reference: LDR- or HDR-ꟻLIP; auto: LDR for an 8-bit output "
+                    "(display-encoded), HDR otherwise")
+        ->check(CLI::IsMember({"auto", "ldr", "hdr"}))
+        ->excludes(noFlip);
+    cmd->add_option("--flip-ppd", o.flipPpd,
+                    "with --reference: ꟻLIP's pixels per degree, a number or 'camera' (each "
+                    "frame's camera, an HMD's view; default 67.02, a 4K monitor at 0.7 m)")
+        ->check(CLI::Validator(
+            [](std::string& v) {
+                FlipChoice c;
+                return parseFlipPpd(v, c)
+                           ? std::string()
+                           : "expected 'camera' or a finite number > 0, got '" + v + "'";
+            },
+            "PPD"))
+        ->excludes(noFlip);
     addSceneOptions(*cmd, o.scene);
 }
 
@@ -203,6 +221,14 @@ int runCommand(const RunOptions& o) {
         throw InputError("--reference-output", "", "needs --reference");
     if (!o.referenceNoise.empty() && o.reference.empty())
         throw InputError("--reference-noise", "", "needs --reference");
+    FlipChoice flip;
+    flip.enabled = !o.noFlip;
+    flip.mode = o.flipMode;
+    if (!o.flipPpd.empty()) parseFlipPpd(o.flipPpd, flip);  // checked by the option's validator
+    if (o.reference.empty() && (o.noFlip || o.flipMode != "auto" || !o.flipPpd.empty()))
+        throw InputError(
+            o.noFlip ? "--no-flip" : (o.flipMode != "auto" ? "--flip-mode" : "--flip-ppd"), "",
+            "needs --reference");
     std::optional<ReferenceSource> reference, referenceNoise;
     if (!o.reference.empty()) {
         reference.emplace(o.reference, "--reference", width, height);
@@ -227,6 +253,10 @@ int runCommand(const RunOptions& o) {
     if (layers) {
         errors.setLayers(*layers);
         floor.setLayers(*layers);
+    }
+    if (reference) {
+        errors.setFlip(flip, runner.displayEncoded(compared));
+        floor.setFlip(flip, runner.displayEncoded(compared));
     }
     const OutputFolder folder(outDir, "--out", o.overwrite);
     InterruptGuard interrupt;

@@ -14,6 +14,7 @@
 #include <vulkan/vulkan_raii.hpp>
 
 #include "core/graph/Param.h"
+#include "core/graph/PassFacts.h"
 #include "core/graph/Reflection.h"
 #include "core/scene/SceneFeatures.h"
 #include "core/vk/ComputePipeline.h"
@@ -170,6 +171,9 @@ public:
     // Counters the pass wants in report.json (e.g. how many NaN inputs it sanitized), read after
     // the last frame (a GPU read-back: only for reports, never per frame). Null = none.
     virtual nlohmann::json statistics(const StatisticsContext&) const { return nullptr; }
+    // What evaluation needs to know about this pass's configuration (PassFacts.h), from its
+    // parameters as loaded; no device needed. Empty for passes evaluation does not ask about.
+    virtual PassFacts facts() const { return {}; }
 
     const std::string& name() const { return mName; }
     const std::string& type() const { return mType; }

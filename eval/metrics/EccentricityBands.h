@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "core/graph/PassFacts.h"
 #include "core/image/ImageIO.h"
 #include "core/scene/Camera.h"
 
@@ -49,15 +50,13 @@ std::vector<BandError> eccentricityBandErrors(const image::ImageRGBA& test,
 // [{"from", "to" (null = open), "pixels", "rmse", "flip_mean" (when computed)}]
 nlohmann::json bandErrorsToJson(const std::vector<BandError>& bands);
 
-// The layers of seed 000 §3.2 (Peres et al. 2023, Table 1): fovea d <= r0, middle r0 < d <= r1,
-// outer d > r1, with d the distance of a pixel centre to its eye's gaze point in pixels of the
-// eye image or its eccentricity in degrees - FoveationMask's rule (foveation_mask.comp layerOf),
-// so the split of an error into layers is the split the mask made. Seed 000 §5 reads the fovea
-// (must match Base) and the periphery (where the loss may be) apart.
-struct LayerRadii {
-    double r0 = 0, r1 = 0;
-    bool degrees = false;  // false: pixels (FoveationMask radiusUnit)
-};
+// The layers of seed 000 §3.2 (core/graph/PassFacts.h; Peres et al. 2023, Table 1): fovea
+// d <= r0, middle r0 < d <= r1, outer d > r1, with d the distance of a pixel centre to its eye's
+// gaze point in pixels of the eye image or its eccentricity in degrees - FoveationMask's rule
+// (foveation_mask.comp layerOf), so the split of an error into layers is the split the mask
+// made. Seed 000 §5 reads the fovea (must match Base) and the periphery (where the loss may be)
+// apart.
+using LayerRadii = graph::LayerRadii;
 
 inline constexpr const char* kLayerNames[] = {"fovea", "middle", "outer"};
 

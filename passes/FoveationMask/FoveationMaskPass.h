@@ -24,6 +24,12 @@ public:
     // toss every frame) makes the output depend on the frame index.
     bool cacheable() const override { return !mAnimate; }
     std::string variant() const override { return mRadiusUnit; }
+    // The radii per-layer errors split by (eval/metrics/EccentricityBands.h).
+    graph::PassFacts facts() const override {
+        graph::PassFacts facts;
+        facts.foveationLayers = graph::LayerRadii{mR0, mR1, mRadiusUnit == "degrees"};
+        return facts;
+    }
 
 private:
     float mR0 = 144.0f, mR1 = 288.0f;

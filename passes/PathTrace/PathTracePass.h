@@ -40,6 +40,13 @@ public:
     RayCounts rayCounts(const gpu::Context& context) const;
     // report.json: the same counts (with countRays on), by kind and in total.
     nlohmann::json statistics(const graph::StatisticsContext& ctx) const override;
+    // `spp` per frame (a reference graph's frame count; with a sample layout the layout decides,
+    // which reference graphs do not use).
+    graph::PassFacts facts() const override {
+        graph::PassFacts facts;
+        facts.samplesPerFrame = uint32_t(mSpp);
+        return facts;
+    }
 
 private:
     // Default of lastBounceMis: see docs/passes/PathTrace.md "Emission and MIS".

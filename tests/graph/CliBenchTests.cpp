@@ -119,6 +119,38 @@ TEST(CliBench, TinyBenchWritesEveryFile) {
                   j["graphs"][g]["errors"]["mean"]["rmse"]);
 }
 
+// ꟻLIP in a bench: on by default (HDR for the float output, in bench.json's means, bench.csv and
+// bench.md), LDR at the camera's pixels per degree when the bench says so, absent with false.
+TEST(CliBench, FlipFiguresFollowTheBenchFile) {
+    TempDir tmp;
+    json spec = tinyBench();
+    spec["graphs"] = json::array({spec["graphs"][0]});
+    ASSERT_EQ(bench(tmp, spec, "on").code, 0);
+    const json on = json::parse(readText(tmp / "on" / "bench.json"));
+    const json& errors = on.at("graphs")[0].at("errors");
+    EXPECT_EQ(errors.at("flip").at("mode"), "hdr");
+    const double mean = errors.at("mean").at("flip_mean").get<double>();
+    EXPECT_GT(mean, 0.0);
+    EXPECT_LT(mean, 1.0);
+    EXPECT_TRUE(errors.at("mean").at("bands")[0].contains("flip_mean"));
+    EXPECT_TRUE(contains(readText(tmp / "on" / "bench.csv"), ",temporal_error,flip_mean,"));
+    EXPECT_TRUE(contains(readText(tmp / "on" / "bench.md"), "| ꟻLIP |"));
+
+    spec["flip"] = {{"mode", "ldr"}, {"ppd", "camera"}};
+    ASSERT_EQ(bench(tmp, spec, "camera").code, 0);
+    const json camera = json::parse(readText(tmp / "camera" / "bench.json"));
+    const json& c = camera.at("graphs")[0].at("errors");
+    EXPECT_EQ(c.at("flip").at("mode"), "ldr");
+    EXPECT_LT(c.at("flip").at("pixels_per_degree").get<double>(), 5.0);  // 32 px over ~40 deg
+    EXPECT_NE(c.at("mean").at("flip_mean").get<double>(), mean);
+
+    spec["flip"] = false;
+    ASSERT_EQ(bench(tmp, spec, "off").code, 0);
+    const json off = json::parse(readText(tmp / "off" / "bench.json"));
+    EXPECT_FALSE(off.at("graphs")[0].at("errors").at("mean").contains("flip_mean"));
+    EXPECT_FALSE(off.at("graphs")[0].at("errors").contains("flip"));
+}
+
 TEST(CliBench, BadBenchFilesNameThePointer) {
     TempDir tmp;
     struct Case {
@@ -197,6 +229,24 @@ TEST(CliBench, BadBenchFilesNameThePointer) {
              j["seedz"] = {1, 2};
          },
          {"/seedz", "did you mean"}},
+        // ꟻLIP (docs/bench.md "flip"): a boolean or {"mode", "ppd"}.
+        {[](json& j) { j["flip"] = "yes"; }, {"/flip", "true, false"}},
+        {[](json& j) {
+             j["flip"] = {{"mode", "sdr"}};
+         },
+         {"/flip/mode", "\"ldr\""}},
+        {[](json& j) {
+             j["flip"] = {{"ppd", -2}};
+         },
+         {"/flip/ppd", "camera"}},
+        {[](json& j) {
+             j["flip"] = {{"ppd", "eye"}};
+         },
+         {"/flip/ppd", "camera"}},
+        {[](json& j) {
+             j["flip"] = {{"pdd", 30}};
+         },
+         {"/flip/pdd", "did you mean 'ppd'"}},
     };
     for (size_t i = 0; i < cases.size(); ++i) {
         json spec = tinyBench();
@@ -230,6 +280,33 @@ TEST(CliBench, ShippedBenchFilesParse) {
         EXPECT_FALSE(contains(r.err, e.path().filename().string())) << r.describe();
     }
     EXPECT_GE(count, 1u);
+}
+
+// docs/benchmarks.md's figures come from scripts/benchmarks.sh: every bench file it runs exists
+// (and, being in graphs/benches, parses: ShippedBenchFilesParse), every table of its --list is
+// one the script accepts, and the page names the script.
+TEST(CliBench, BenchmarksScriptNamesShippedBenchFiles) {
+    TempDir tmp;
+    const std::string script = (kRepo / "scripts" / "benchmarks.sh").string();
+    const int status = std::system(("bash " + shellQuote(script) + " --list > " +
+                                    shellQuote((tmp / "list").string()) + " 2>&1")
+                                       .c_str());
+    ASSERT_EQ(status, 0) << readText(tmp / "list");
+    std::istringstream lines(readText(tmp / "list"));
+    std::string table, file;
+    std::set<std::string> tables;
+    size_t count = 0;
+    while (lines >> table >> file) {
+        ++count;
+        tables.insert(table);
+        EXPECT_EQ(file.rfind("graphs/benches/", 0), 0u) << file;
+        EXPECT_TRUE(fs::is_regular_file(kRepo / file)) << table << " " << file;
+    }
+    EXPECT_GE(count, 10u);
+    EXPECT_TRUE(tables.count("peres") && tables.count("koskela") && tables.count("vp"));
+    const std::string page = readText(kRepo / "docs" / "benchmarks.md");
+    EXPECT_TRUE(contains(page, "scripts/benchmarks.sh"));
+    EXPECT_LT(std::count(page.begin(), page.end(), '\n'), 400) << "docs/benchmarks.md is a summary";
 }
 
 TEST(CliBench, BenchCameraOverridesTheGraphsDefaultCamera) {

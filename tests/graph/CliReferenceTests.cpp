@@ -2,6 +2,7 @@
 // report.json (docs/report-format.md "reference"), a single reference for every frame or a
 // directory of per-frame references, the default compared output, and input errors (size
 // mismatch, missing file or frame, NaN, unknown output) naming the file or option. Tiny sizes.
+#include "eval/flip/Flip.h"
 #include "eval/metrics/ImageMetrics.h"
 #include "tests/graph/CliTestUtil.h"
 
@@ -110,6 +111,54 @@ TEST(CliReference, KnownOffsetGivesKnownErrorsAndTemporalError) {
     EXPECT_GT(temporal, 0.0) << "1 spp frames differ";
     EXPECT_NEAR(ref.at("temporal_error").get<double>(), temporal, 1e-9);
     EXPECT_NEAR(ref["frames"][1].at("temporal_error").get<double>(), temporal, 1e-9);
+}
+
+// ꟻLIP of each frame: the library's figure on the saved frame and the reference, HDR for the
+// float output and LDR for Tonemap's 8-bit one; the options need --reference.
+TEST(CliReference, FlipPerFrameMatchesTheLibrary) {
+    TempDir tmp;
+    Result first = runWithReference(tmp / "a", "2", {"--save-frames", "all", "--seed", "5"});
+    ASSERT_EQ(first.code, 0) << first.describe();
+    const fs::path reference = tmp / "a" / "pt.radiance.frame0001.exr";
+    Result r = runWithReference(tmp / "b", "2",
+                                {"--save-frames", "all", "--reference", reference.string()});
+    ASSERT_EQ(r.code, 0) << r.describe();
+    const json ref = reportOf(tmp / "b").at("reference");
+    EXPECT_EQ(ref.at("flip").at("mode"), "hdr");
+    const auto expected =
+        fovea::eval::computeFlip(fovea::image::readImage(tmp / "b" / "pt.radiance.frame0000.exr"),
+                                 fovea::image::readImage(reference), fovea::eval::FlipOptions{});
+    EXPECT_NEAR(ref["frames"][0].at("flip_mean").get<double>(), expected.mean, 1e-9);
+    EXPECT_EQ(ref["frames"][0].at("flip").at("exposures").get<uint32_t>(), expected.exposureCount);
+    EXPECT_GT(expected.mean, 0.0);
+    double bandSum = 0;  // the bands' means weighted by their pixels give the image's mean
+    uint64_t pixels = 0;
+    for (const auto& b : ref["frames"][0].at("bands")) {
+        bandSum += b.at("flip_mean").get<double>() * double(b.at("pixels").get<uint64_t>());
+        pixels += b.at("pixels").get<uint64_t>();
+    }
+    EXPECT_NEAR(bandSum / double(pixels), expected.mean, 1e-6);
+    EXPECT_NEAR(ref.at("mean").at("flip_mean").get<double>(),
+                0.5 * (ref["frames"][0].at("flip_mean").get<double>() +
+                       ref["frames"][1].at("flip_mean").get<double>()),
+                1e-12);
+
+    r = runWithReference(tmp / "c", "2",
+                         {"--reference", (tmp / "a" / "tm.ldr.frame0001.exr").string(),
+                          "--reference-output", "tm.ldr", "--flip-ppd", "20"});
+    ASSERT_EQ(r.code, 0) << r.describe();
+    const json ldr = reportOf(tmp / "c").at("reference");
+    EXPECT_EQ(ldr.at("flip").at("mode"), "ldr");
+    EXPECT_EQ(ldr.at("flip").at("pixels_per_degree").get<double>(), 20.0);
+    r = runWithReference(tmp / "d", "2", {"--reference", reference.string(), "--no-flip"});
+    ASSERT_EQ(r.code, 0) << r.describe();
+    EXPECT_FALSE(reportOf(tmp / "d").at("reference").at("mean").contains("flip_mean"));
+
+    expectInputError(runWithReference(tmp / "e", "1", {"--flip-mode", "ldr"}),
+                     {"--flip-mode", "needs --reference"});
+    expectInputError(runWithReference(tmp / "f", "1",
+                                      {"--reference", reference.string(), "--flip-ppd", "monitor"}),
+                     {"--flip-ppd", "camera"});
 }
 
 TEST(CliReference, BadReferencesAreInputErrors) {
