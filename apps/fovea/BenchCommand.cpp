@@ -6,15 +6,15 @@
 #include <fstream>
 #include <iostream>
 
-#include "apps/fovea/Bench.h"
 #include "apps/fovea/CliChecks.h"
 #include "apps/fovea/Commands.h"
 #include "apps/fovea/GraphRunner.h"
-#include "apps/fovea/OutputFolder.h"
 #include "apps/fovea/Progress.h"
-#include "apps/fovea/ReferenceErrors.h"
 #include "core/util/Error.h"
 #include "core/vk/Context.h"
+#include "eval/bench/Bench.h"
+#include "eval/reference/ReferenceErrors.h"
+#include "eval/report/OutputFolder.h"
 
 namespace fovea::app {
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/fovea/EvalNames.h"
 #include "apps/fovea/SceneSetup.h"
 #include "core/graph/GraphDesc.h"
 

@@ -1,9 +1,11 @@
 #include "apps/fovea/GraphRunner.h"
 
+#include <algorithm>
 #include <chrono>
 #include <iostream>
 
 #include "core/graph/PassRegistry.h"
+#include "core/util/DidYouMean.h"
 #include "core/util/Error.h"
 #include "core/vk/Context.h"
 #include "core/vk/Formats.h"
@@ -102,6 +104,33 @@ ReportInputs GraphRunner::reportBase(const std::string& graphFile, uint32_t fram
     report.frames = frames;
     report.seed = mConfig.seed;
     return report;
+}
+
+std::string selectComparedOutput(const GraphRunner& runner, const std::string& requested,
+                                 const std::string& option) {
+    const auto& desc = runner.graph().desc();
+    std::vector<std::string> names;
+    for (const auto& out : desc.outputs) names.push_back(out.source.str());
+    if (requested.empty()) {
+        std::string first = runner.firstFloatOutput();
+        if (first.empty())
+            throw InputError(option, "",
+                             "graph '" + desc.file +
+                                 "' has no live float output to compare; name one of its "
+                                 "outputs with " +
+                                 option);
+        return first;
+    }
+    if (std::find(names.begin(), names.end(), requested) == names.end()) {
+        std::string list;
+        for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+        throw InputError(option, "",
+                         "'" + requested + "' is not an output of graph '" + desc.file + "'" +
+                             didYouMean(requested, names) + " (outputs: " + list + ")");
+    }
+    if (!runner.alive(requested))
+        throw InputError(option, "", "output '" + requested + "' is culled in this run");
+    return requested;
 }
 
 }  // namespace fovea::app

@@ -6,10 +6,11 @@
 #include <optional>
 #include <string>
 
-#include "apps/fovea/Report.h"
+#include "apps/fovea/EvalNames.h"
 #include "apps/fovea/SceneSetup.h"
 #include "core/graph/RenderGraph.h"
 #include "core/image/ImageIO.h"
+#include "eval/report/Report.h"
 
 namespace fovea::gpu {
 class Context;
@@ -86,5 +87,10 @@ image::ImageRGBA renderReferenceImage(gpu::Context& ctx, RunScene& scene,
                                       uint32_t spp, const GraphRunConfig& config,
                                       const std::string& output, const std::string& outputOption,
                                       bool quiet);
+
+// The output compared with a reference: `requested` (must be one of the graph's marked outputs,
+// alive) or, when empty, the first float output. Errors name `option`.
+std::string selectComparedOutput(const GraphRunner& runner, const std::string& requested,
+                                 const std::string& option);
 
 }  // namespace fovea::app

@@ -8,10 +8,10 @@
 #include "apps/fovea/Commands.h"
 #include "apps/fovea/GraphRunner.h"
 #include "apps/fovea/Progress.h"
-#include "apps/fovea/ReferenceErrors.h"
 #include "core/graph/Param.h"
 #include "core/graph/PassRegistry.h"
 #include "core/util/Error.h"
+#include "eval/reference/ReferenceErrors.h"
 
 namespace fovea::app {
 

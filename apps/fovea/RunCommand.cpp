@@ -14,16 +14,16 @@
 #include "apps/fovea/CliChecks.h"
 #include "apps/fovea/Commands.h"
 #include "apps/fovea/GraphRunner.h"
-#include "apps/fovea/OutputFolder.h"
 #include "apps/fovea/Progress.h"
-#include "apps/fovea/ReferenceErrors.h"
-#include "apps/fovea/Report.h"
 #include "core/image/ImageIO.h"
 #include "core/scene/ViewProbe.h"
 #include "core/util/Error.h"
 #include "core/vk/Context.h"
 #include "core/vk/Formats.h"
 #include "core/vk/Resources.h"
+#include "eval/reference/ReferenceErrors.h"
+#include "eval/report/OutputFolder.h"
+#include "eval/report/Report.h"
 
 namespace fovea::app {
 

@@ -2,7 +2,7 @@
 // Paths in a bench file are relative to its folder, so the input is written where the project's
 // own bench files live, graphs/benches/, in a copy of graphs/ made of links to the real files: the
 // seeds' "../koskela_bmfr.json" and "../cameras/..." then exist, and the reader gets past them.
-#include "apps/fovea/Bench.h"
+#include "eval/bench/Bench.h"
 #include "tests/fuzz/FuzzInput.h"
 
 namespace {
@@ -23,7 +23,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     static const bool linked = (linkProjectGraphs(), true);
     (void)linked;
     fuzz::expectOnlyInputErrors("bench_file", [&] {
-        (void)app::parseBenchFile(fuzz::writeInput(data, size, "graphs/benches/bench.json"));
+        (void)eval::parseBenchFile(fuzz::writeInput(data, size, "graphs/benches/bench.json"));
     });
     return 0;
 }

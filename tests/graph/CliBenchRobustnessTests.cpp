@@ -1,4 +1,4 @@
-// `fovea bench` writes its folder like `fovea run` (issue 16; apps/fovea/OutputFolder.h): every
+// `fovea bench` writes its folder like `fovea run` (issue 16; eval/report/OutputFolder.h): every
 // file is written checked under a temporary name and renamed, bench.json comes last with
 // "finished", the folder is locked, and a non-empty --out is never written without --overwrite.
 // Before, bench wrote through unchecked std::ofstream: a failed write exited 0 with missing or

@@ -1,4 +1,4 @@
-// `fovea bench` with the key `seeds` (docs/bench.md "Several seeds", apps/fovea/BenchSeeds.cpp):
+// `fovea bench` with the key `seeds` (docs/bench.md "Several seeds", eval/bench/BenchSeeds.cpp):
 // every graph runs once per seed; the errors are the means over the seeds of each seed's mean,
 // with their standard error and each seed's own errors, and every graph after the first gets its
 // paired difference against the first (per seed graph - first, mean ± s.e., flagged beyond

@@ -1,4 +1,4 @@
-// The statistics of `fovea bench` over several seeds (apps/fovea/BenchSeeds.cpp, docs/bench.md
+// The statistics of `fovea bench` over several seeds (eval/bench/BenchSeeds.cpp, docs/bench.md
 // "Several seeds") on numbers worked out by hand: the mean over the seeds, the standard error
 // (sample standard deviation / sqrt(seeds)), the paired difference and its > 2 s.e. flag. The
 // end-to-end run is tests/graph/CliBenchSeedsTests.cpp.
@@ -6,10 +6,10 @@
 
 #include <cmath>
 
-#include "apps/fovea/Bench.h"
+#include "eval/bench/Bench.h"
 
 using nlohmann::json;
-using namespace fovea::app;
+using namespace fovea::eval;
 
 namespace {
 

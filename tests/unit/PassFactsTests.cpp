@@ -5,11 +5,11 @@
 #include <gtest/gtest.h>
 
 #include "apps/fovea/Commands.h"
-#include "apps/fovea/ReferenceErrors.h"
 #include "core/graph/GraphDesc.h"
 #include "core/graph/Param.h"
 #include "core/graph/PassRegistry.h"
 #include "core/util/Error.h"
+#include "eval/reference/ReferenceErrors.h"
 #include "passes/RegisterPasses.h"
 
 using namespace fovea;
@@ -61,7 +61,7 @@ TEST(PassFacts, GraphReadersUseTheFacts) {
             {"params", {{"r0", 1}}}},
            {{"name", "fm"}, {"type", "FoveationMask"}, {"params", {{"r0", 30}, {"r1", 60}}}}}},
          {"outputs", nlohmann::json::array({"fm.mask"})}});
-    const auto radii = app::foveationRadiiOf(peres);
+    const auto radii = eval::foveationRadiiOf(peres);
     ASSERT_TRUE(radii);
     EXPECT_EQ(radii->r0, 30.0);  // the disabled pass is skipped
     EXPECT_EQ(radii->r1, 60.0);
@@ -77,5 +77,5 @@ TEST(PassFacts, GraphReadersUseTheFacts) {
                  {"passes", {{{"name", "fm"}, {"type", "FoveationMask"}}}},
                  {"outputs", nlohmann::json::array({"fm.mask"})}});
     EXPECT_THROW(app::referenceSamplesPerFrame(none, "g.json"), InputError);
-    EXPECT_FALSE(app::foveationRadiiOf(reference));
+    EXPECT_FALSE(eval::foveationRadiiOf(reference));
 }

@@ -8,9 +8,9 @@
 #include <cmath>
 #include <set>
 
-#include "apps/fovea/Bench.h"
+#include "eval/bench/Bench.h"
 
-namespace fovea::app {
+namespace fovea::eval {
 
 using nlohmann::json;
 
@@ -294,4 +294,4 @@ void seedTables(std::ostream& t, const std::vector<BenchResult>& results) {
     }
 }
 
-}  // namespace fovea::app
+}  // namespace fovea::eval

@@ -11,9 +11,9 @@
 #include <string_view>
 #include <vector>
 
-#include "apps/fovea/Bench.h"
+#include "eval/bench/Bench.h"
 
-namespace fovea::app {
+namespace fovea::eval {
 
 namespace {
 
@@ -203,4 +203,4 @@ bool rasterizeSvg(const std::filesystem::path& svg, const std::filesystem::path&
     return true;
 }
 
-}  // namespace fovea::app
+}  // namespace fovea::eval

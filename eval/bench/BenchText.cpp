@@ -3,9 +3,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "apps/fovea/Bench.h"
+#include "eval/bench/Bench.h"
 
-namespace fovea::app {
+namespace fovea::eval {
 
 std::string benchNumber(double v, const char* format) {
     if (std::isnan(v)) return "nan";
@@ -21,4 +21,4 @@ std::string benchMarkdown(const std::string& s) {
     return out;
 }
 
-}  // namespace fovea::app
+}  // namespace fovea::eval

@@ -3,11 +3,11 @@
 #include <cmath>
 #include <sstream>
 
-#include "apps/fovea/Bench.h"
-#include "apps/fovea/OutputFolder.h"
+#include "eval/bench/Bench.h"
 #include "eval/metrics/ImageMetrics.h"
+#include "eval/report/OutputFolder.h"
 
-namespace fovea::app {
+namespace fovea::eval {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -316,4 +316,4 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
     folder.writeText("bench.json", all.dump(2) + "\n");
 }
 
-}  // namespace fovea::app
+}  // namespace fovea::eval

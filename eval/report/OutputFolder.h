@@ -14,7 +14,7 @@
 #include <functional>
 #include <string>
 
-namespace fovea::app {
+namespace fovea::eval {
 
 class OutputFolder {
 public:
@@ -48,4 +48,4 @@ inline constexpr const char* kOutputLockName = ".fovea.lock";
 // an empty result is "run". Never a path separator, "." or "..".
 std::string safeFolderName(const std::string& name);
 
-}  // namespace fovea::app
+}  // namespace fovea::eval

@@ -6,14 +6,14 @@
 #include <filesystem>
 #include <fstream>
 
-#include "apps/fovea/Bench.h"
 #include "core/scene/Camera.h"
 #include "core/util/DidYouMean.h"
 #include "core/util/Error.h"
 #include "core/util/JsonUtil.h"
 #include "core/util/UserFile.h"
+#include "eval/bench/Bench.h"
 
-namespace fovea::app {
+namespace fovea::eval {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -305,4 +305,4 @@ BenchSpec parseBenchFile(const fs::path& file) {
     return spec;
 }
 
-}  // namespace fovea::app
+}  // namespace fovea::eval

@@ -6,7 +6,7 @@
 
 #include "core/graph/RenderGraph.h"
 
-namespace fovea::app {
+namespace fovea::eval {
 
 struct Stats {
     double mean = 0, median = 0, min = 0, max = 0;
@@ -28,4 +28,4 @@ struct ReportInputs {
 constexpr int kReportSchemaVersion = 3;
 nlohmann::json buildReport(const graph::RenderGraph& graph, const ReportInputs& in);
 
-}  // namespace fovea::app
+}  // namespace fovea::eval

@@ -1,4 +1,4 @@
-#include "apps/fovea/OutputFolder.h"
+#include "eval/report/OutputFolder.h"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -10,7 +10,7 @@
 
 #include "core/util/Error.h"
 
-namespace fovea::app {
+namespace fovea::eval {
 
 namespace fs = std::filesystem;
 
@@ -120,4 +120,4 @@ std::string safeFolderName(const std::string& name) {
     return out.empty() ? "run" : out;
 }
 
-}  // namespace fovea::app
+}  // namespace fovea::eval

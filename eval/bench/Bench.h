@@ -9,12 +9,12 @@
 #include <string>
 #include <vector>
 
-#include "apps/fovea/ReferenceErrors.h"
-#include "apps/fovea/Report.h"
 #include "eval/metrics/EccentricityBands.h"
 #include "eval/metrics/ImageMetrics.h"
+#include "eval/reference/ReferenceErrors.h"
+#include "eval/report/Report.h"
 
-namespace fovea::app {
+namespace fovea::eval {
 
 struct BenchGraph {
     std::string label, file;        // file resolved against the bench file's folder
@@ -150,4 +150,4 @@ std::string benchPlotSvg(const std::vector<BenchResult>& results, const std::str
 bool rasterizeSvg(const std::filesystem::path& svg, const std::filesystem::path& png,
                   std::string& why);
 
-}  // namespace fovea::app
+}  // namespace fovea::eval

@@ -1,17 +1,16 @@
-#include "apps/fovea/ReferenceErrors.h"
+#include "eval/reference/ReferenceErrors.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <regex>
 
-#include "apps/fovea/GraphRunner.h"
 #include "core/graph/Param.h"
 #include "core/graph/PassRegistry.h"
 #include "core/util/DidYouMean.h"
 #include "core/util/Error.h"
 
-namespace fovea::app {
+namespace fovea::eval {
 
 namespace fs = std::filesystem;
 
@@ -151,33 +150,6 @@ std::optional<eval::LayerRadii> foveationRadiiOf(const graph::GraphDesc& desc) {
         if (auto layers = pass->facts().foveationLayers) return *layers;
     }
     return std::nullopt;
-}
-
-std::string selectComparedOutput(const GraphRunner& runner, const std::string& requested,
-                                 const std::string& option) {
-    const auto& desc = runner.graph().desc();
-    std::vector<std::string> names;
-    for (const auto& out : desc.outputs) names.push_back(out.source.str());
-    if (requested.empty()) {
-        std::string first = runner.firstFloatOutput();
-        if (first.empty())
-            throw InputError(option, "",
-                             "graph '" + desc.file +
-                                 "' has no live float output to compare; name one of its "
-                                 "outputs with " +
-                                 option);
-        return first;
-    }
-    if (std::find(names.begin(), names.end(), requested) == names.end()) {
-        std::string list;
-        for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-        throw InputError(option, "",
-                         "'" + requested + "' is not an output of graph '" + desc.file + "'" +
-                             didYouMean(requested, names) + " (outputs: " + list + ")");
-    }
-    if (!runner.alive(requested))
-        throw InputError(option, "", "output '" + requested + "' is culled in this run");
-    return requested;
 }
 
 bool parseFlipPpd(const std::string& text, FlipChoice& choice) {
@@ -360,4 +332,4 @@ nlohmann::json FrameErrors::json() const {
     return out;
 }
 
-}  // namespace fovea::app
+}  // namespace fovea::eval

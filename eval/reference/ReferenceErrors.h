@@ -15,9 +15,7 @@
 #include "eval/metrics/EccentricityBands.h"
 #include "eval/metrics/ImageMetrics.h"
 
-namespace fovea::app {
-
-class GraphRunner;
+namespace fovea::eval {
 
 // The foveation layer radii of a graph: those its first enabled pass that has layers reports
 // (Pass::facts, e.g. FoveationMask's r0, r1 and radiusUnit); none when no pass has.
@@ -61,11 +59,6 @@ private:
     image::ImageRGBA mImage;
     void load(const std::filesystem::path& file);
 };
-
-// The output compared: `requested` (must be one of the graph's marked outputs, alive) or, when
-// empty, the first float output. Errors name `option`.
-std::string selectComparedOutput(const GraphRunner& runner, const std::string& requested,
-                                 const std::string& option);
 
 // How `run --reference` and `bench` evaluate ꟻLIP (docs/metrics.md "ꟻLIP"); on by default.
 struct FlipChoice {
@@ -138,4 +131,4 @@ private:
     std::optional<image::ImageRGBA> mPrevious;
 };
 
-}  // namespace fovea::app
+}  // namespace fovea::eval

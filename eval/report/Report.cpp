@@ -1,8 +1,8 @@
-#include "apps/fovea/Report.h"
+#include "eval/report/Report.h"
 
 #include <algorithm>
 
-namespace fovea::app {
+namespace fovea::eval {
 
 Stats computeStats(std::vector<double> values) {
     Stats s;
@@ -71,4 +71,4 @@ nlohmann::json buildReport(const graph::RenderGraph& graph, const ReportInputs& 
     return report;
 }
 
-}  // namespace fovea::app
+}  // namespace fovea::eval
