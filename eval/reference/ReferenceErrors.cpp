@@ -233,48 +233,37 @@ eval::ImageMetrics FrameErrors::mean() const {
     return m;
 }
 
-std::vector<eval::BandError> FrameErrors::meanBands() const {
+std::vector<eval::BandError> FrameErrors::meanRegions(
+    std::vector<eval::BandError> Frame::*regions, bool rms) const {
     std::vector<eval::BandError> mean;
     size_t n = 0;
     for (const auto& f : mFrames) {
-        if (f.bands.empty()) continue;
+        const auto& frame = f.*regions;
+        if (frame.empty()) continue;
         if (mean.empty()) {
-            mean = f.bands;
-            for (auto& b : mean) b.rmse = b.flipMean = 0;
+            mean = frame;
+            for (auto& r : mean) r.rmse = r.flipMean = 0;
         }
-        for (size_t b = 0; b < mean.size() && b < f.bands.size(); ++b) {
-            mean[b].rmse += f.bands[b].rmse;
-            mean[b].flipMean += f.bands[b].flipMean;  // NaN (no ꟻLIP) stays NaN
+        for (size_t r = 0; r < mean.size() && r < frame.size(); ++r) {
+            mean[r].rmse += rms ? frame[r].rmse * frame[r].rmse : frame[r].rmse;
+            mean[r].flipMean += frame[r].flipMean;  // a plain mean; NaN (no ꟻLIP) stays NaN
         }
         ++n;
     }
-    for (auto& b : mean) {
-        b.rmse /= double(std::max<size_t>(n, 1));
-        b.flipMean /= double(std::max<size_t>(n, 1));
+    const double count = double(std::max<size_t>(n, 1));
+    for (auto& r : mean) {
+        r.rmse = rms ? std::sqrt(r.rmse / count) : r.rmse / count;
+        r.flipMean /= count;
     }
     return mean;
 }
 
+std::vector<eval::BandError> FrameErrors::meanBands() const {
+    return meanRegions(&Frame::bands, false);
+}
+
 std::vector<eval::BandError> FrameErrors::meanLayers() const {
-    std::vector<eval::BandError> mean;
-    size_t n = 0;
-    for (const auto& f : mFrames) {
-        if (f.layers.empty()) continue;
-        if (mean.empty()) {
-            mean = f.layers;
-            for (auto& l : mean) l.rmse = l.flipMean = 0;
-        }
-        for (size_t l = 0; l < mean.size() && l < f.layers.size(); ++l) {
-            mean[l].rmse += f.layers[l].rmse * f.layers[l].rmse;
-            mean[l].flipMean += f.layers[l].flipMean;  // a plain mean: ꟻLIP is not squared
-        }
-        ++n;
-    }
-    for (auto& l : mean) {
-        l.rmse = std::sqrt(l.rmse / double(std::max<size_t>(n, 1)));
-        l.flipMean /= double(std::max<size_t>(n, 1));
-    }
-    return mean;
+    return meanRegions(&Frame::layers, true);
 }
 
 std::optional<uint32_t> FrameErrors::worstFrame() const {

@@ -124,6 +124,10 @@ private:
         nlohmann::json flip;  // flipSettingsToJson; null without ꟻLIP
     };
     eval::MetricOptions mOptions;
+    // Mean over the frames that have them of each region's figures: RMSE as a mean (rms false)
+    // or as the RMS over the frames (so that it squares to the mean MSE), ꟻLIP as a mean.
+    std::vector<eval::BandError> meanRegions(std::vector<eval::BandError> Frame::*regions,
+                                             bool rms) const;
     std::optional<eval::LayerRadii> mLayers;
     std::optional<eval::FlipOptions> mFlip;
     bool mFlipPpdFromCamera = false;
