@@ -52,24 +52,34 @@ Plane convolveSeparable(const Plane& in, const Kernel& rows, const Kernel& colum
     const int w = int(in.width), h = int(in.height);
     Plane mid(in.width, in.height), out(in.width, in.height);
     const int rr = int(rows.size() / 2), rc = int(columns.size() / 2);
+    // Rows: the clamp only near the left and right edges; the same sum order everywhere.
     parallelRows(in.height, [&](uint32_t y0, uint32_t y1) {
-        for (int y = int(y0); y < int(y1); ++y)
+        for (int y = int(y0); y < int(y1); ++y) {
+            const float* src = &in.values[size_t(y) * size_t(w)];
+            float* dst = &mid.values[size_t(y) * size_t(w)];
             for (int x = 0; x < w; ++x) {
                 float sum = 0;
-                for (int k = -rr; k <= rr; ++k)
-                    sum += rows[size_t(k + rr)] * in.at(uint32_t(std::clamp(x + k, 0, w - 1)), y);
-                mid.at(x, y) = sum;
+                if (x >= rr && x + rr < w) {
+                    for (int k = -rr; k <= rr; ++k) sum += rows[size_t(k + rr)] * src[x + k];
+                } else {
+                    for (int k = -rr; k <= rr; ++k)
+                        sum += rows[size_t(k + rr)] * src[std::clamp(x + k, 0, w - 1)];
+                }
+                dst[x] = sum;
             }
+        }
     });
+    // Columns: whole rows scaled and added (contiguous, so the compiler vectorizes it), tap by
+    // tap in the same order as the rows.
     parallelRows(in.height, [&](uint32_t y0, uint32_t y1) {
-        for (int y = int(y0); y < int(y1); ++y)
-            for (int x = 0; x < w; ++x) {
-                float sum = 0;
-                for (int k = -rc; k <= rc; ++k)
-                    sum +=
-                        columns[size_t(k + rc)] * mid.at(x, uint32_t(std::clamp(y + k, 0, h - 1)));
-                out.at(x, y) = sum;
+        for (int y = int(y0); y < int(y1); ++y) {
+            float* dst = &out.values[size_t(y) * size_t(w)];
+            for (int k = -rc; k <= rc; ++k) {
+                const float* src = &mid.values[size_t(std::clamp(y + k, 0, h - 1)) * size_t(w)];
+                const float weight = columns[size_t(k + rc)];
+                for (int x = 0; x < w; ++x) dst[x] += weight * src[x];
             }
+        }
     });
     return out;
 }
