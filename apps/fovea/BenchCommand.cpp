@@ -8,13 +8,14 @@
 
 #include "apps/fovea/CliChecks.h"
 #include "apps/fovea/Commands.h"
-#include "apps/fovea/GraphRunner.h"
-#include "apps/fovea/Progress.h"
 #include "core/util/Error.h"
 #include "core/vk/Context.h"
 #include "eval/bench/Bench.h"
 #include "eval/reference/ReferenceErrors.h"
+#include "eval/reference/ReferenceRender.h"
 #include "eval/report/OutputFolder.h"
+#include "eval/run/GraphRunner.h"
+#include "eval/run/Progress.h"
 
 namespace fovea::app {
 

@@ -8,14 +8,17 @@
 #include <vector>
 
 #include "apps/fovea/EvalNames.h"
-#include "apps/fovea/SceneSetup.h"
 #include "core/graph/GraphDesc.h"
+#include "eval/run/SceneSetup.h"
 
 namespace fovea::app {
 
 constexpr int kExitOk = 0;
 constexpr int kExitRuntime = 1;
 constexpr int kExitInput = 2;
+
+// Adds the scene options (eval::SceneOptions) to a subcommand (SceneOptionsCli.cpp).
+void addSceneOptions(CLI::App& cmd, SceneOptions& o);
 
 struct GraphOptions {
     std::string graph;
@@ -64,11 +67,6 @@ struct ReferenceOptions {
 };
 void addReferenceCommand(CLI::App& app, ReferenceOptions& options);
 int referenceCommand(ReferenceOptions options);
-// Samples per pixel per frame of a reference graph: the `spp` of its PathTrace pass(es), which
-// must agree. Errors name `graphFile`.
-uint32_t referenceSamplesPerFrame(const graph::GraphDesc& desc, const std::string& graphFile);
-// Frames a reference graph needs for `spp` samples per pixel (>= 1).
-uint32_t referenceFrames(uint32_t spp, uint32_t samplesPerFrame);
 
 // `fovea bench`: run time against error of several graphs (docs/bench.md).
 struct BenchOptions {

@@ -8,13 +8,13 @@
 
 #include "apps/fovea/CliChecks.h"
 #include "apps/fovea/Commands.h"
-#include "apps/fovea/GraphRunner.h"
 #include "core/graph/PassRegistry.h"
 #include "core/image/ImageIO.h"
 #include "core/util/Error.h"
 #include "core/vk/Context.h"
 #include "editor/Inspector.h"
 #include "editor/VulkanWindow.h"
+#include "eval/run/GraphRunner.h"
 
 namespace fovea::app {
 

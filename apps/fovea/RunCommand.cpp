@@ -13,8 +13,6 @@
 
 #include "apps/fovea/CliChecks.h"
 #include "apps/fovea/Commands.h"
-#include "apps/fovea/GraphRunner.h"
-#include "apps/fovea/Progress.h"
 #include "core/image/ImageIO.h"
 #include "core/scene/ViewProbe.h"
 #include "core/util/Error.h"
@@ -24,6 +22,8 @@
 #include "eval/reference/ReferenceErrors.h"
 #include "eval/report/OutputFolder.h"
 #include "eval/report/Report.h"
+#include "eval/run/GraphRunner.h"
+#include "eval/run/Progress.h"
 
 namespace fovea::app {
 

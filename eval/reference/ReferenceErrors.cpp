@@ -141,14 +141,16 @@ const image::ImageRGBA& ReferenceSource::forFrame(uint32_t frame) {
     return mImage;
 }
 
+graph::PassFacts passFactsOf(const graph::PassDesc& p, const std::string& file) {
+    if (!p.enabled || !graph::passRegistry().find(p.type)) return {};
+    auto pass = graph::passRegistry().create(p.type, p.name);
+    graph::loadParams(*pass, p.params, file, p.pointer + "/params");
+    return pass->facts();
+}
+
 std::optional<eval::LayerRadii> foveationRadiiOf(const graph::GraphDesc& desc) {
-    for (const auto& p : desc.passes) {
-        if (!p.enabled) continue;
-        // The pass reports its radii from its parameters as loaded (defaults included).
-        auto pass = graph::passRegistry().create(p.type, p.name);
-        graph::loadParams(*pass, p.params, desc.file, p.pointer + "/params");
-        if (auto layers = pass->facts().foveationLayers) return *layers;
-    }
+    for (const auto& p : desc.passes)
+        if (auto layers = passFactsOf(p, desc.file).foveationLayers) return *layers;
     return std::nullopt;
 }
 
@@ -233,8 +235,8 @@ eval::ImageMetrics FrameErrors::mean() const {
     return m;
 }
 
-std::vector<eval::BandError> FrameErrors::meanRegions(
-    std::vector<eval::BandError> Frame::*regions, bool rms) const {
+std::vector<eval::BandError> FrameErrors::meanRegions(std::vector<eval::BandError> Frame::*regions,
+                                                      bool rms) const {
     std::vector<eval::BandError> mean;
     size_t n = 0;
     for (const auto& f : mFrames) {

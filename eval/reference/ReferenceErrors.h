@@ -17,6 +17,11 @@
 
 namespace fovea::eval {
 
+// What a pass of a graph file reports to evaluation (Pass::facts) with its parameters as given;
+// nothing for a disabled pass or a type the registry does not know (compiling the graph reports
+// that, with its pointer). Parameter errors are InputErrors naming `file` and the pointer.
+graph::PassFacts passFactsOf(const graph::PassDesc& pass, const std::string& file);
+
 // The foveation layer radii of a graph: those its first enabled pass that has layers reports
 // (Pass::facts, e.g. FoveationMask's r0, r1 and radiusUnit); none when no pass has.
 std::optional<eval::LayerRadii> foveationRadiiOf(const graph::GraphDesc& desc);

@@ -4,12 +4,12 @@
 // (per-layer errors) and the samples per frame of a reference graph.
 #include <gtest/gtest.h>
 
-#include "apps/fovea/Commands.h"
 #include "core/graph/GraphDesc.h"
 #include "core/graph/Param.h"
 #include "core/graph/PassRegistry.h"
 #include "core/util/Error.h"
 #include "eval/reference/ReferenceErrors.h"
+#include "eval/reference/ReferenceRender.h"
 #include "passes/RegisterPasses.h"
 
 using namespace fovea;
@@ -70,12 +70,19 @@ TEST(PassFacts, GraphReadersUseTheFacts) {
         graphOf({{"version", 1},
                  {"passes", {{{"name", "pt"}, {"type", "PathTrace"}, {"params", {{"spp", 8}}}}}},
                  {"outputs", nlohmann::json::array({"pt.radiance"})}});
-    EXPECT_EQ(app::referenceSamplesPerFrame(reference, "g.json"), 8u);
-    EXPECT_EQ(app::referenceFrames(1024, 8), 128u);
+    EXPECT_EQ(eval::referenceSamplesPerFrame(reference, "g.json"), 8u);
+    EXPECT_EQ(eval::referenceFrames(1024, 8), 128u);
     const graph::GraphDesc none =
         graphOf({{"version", 1},
                  {"passes", {{{"name", "fm"}, {"type", "FoveationMask"}}}},
                  {"outputs", nlohmann::json::array({"fm.mask"})}});
-    EXPECT_THROW(app::referenceSamplesPerFrame(none, "g.json"), InputError);
+    EXPECT_THROW(eval::referenceSamplesPerFrame(none, "g.json"), InputError);
     EXPECT_FALSE(eval::foveationRadiiOf(reference));
+    // An unknown type is left to the compiler (its error names the pointer), not thrown here.
+    const graph::GraphDesc typo = graphOf(
+        {{"version", 1},
+         {"passes",
+          {{{"name", "x"}, {"type", "ImageSorce"}}, {{"name", "fm"}, {"type", "FoveationMask"}}}},
+         {"outputs", nlohmann::json::array({"fm.mask"})}});
+    EXPECT_EQ(eval::foveationRadiiOf(typo)->r0, 144.0);
 }

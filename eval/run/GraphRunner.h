@@ -6,17 +6,16 @@
 #include <optional>
 #include <string>
 
-#include "apps/fovea/EvalNames.h"
-#include "apps/fovea/SceneSetup.h"
 #include "core/graph/RenderGraph.h"
 #include "core/image/ImageIO.h"
 #include "eval/report/Report.h"
+#include "eval/run/SceneSetup.h"
 
 namespace fovea::gpu {
 class Context;
 }
 
-namespace fovea::app {
+namespace fovea::eval {
 
 // Creates the device (after every input was checked, so bad input fails without one), prints
 // its name unless quiet.
@@ -73,24 +72,13 @@ private:
     uint32_t mFrames = 0;
 };
 
-}  // namespace fovea::app
+}  // namespace fovea::eval
 
-namespace fovea::app {
-
-// The converged reference of one camera-path frame: `desc` (a reference graph, e.g.
-// graphs/reference.json) accumulated over referenceFrames(spp, ...) frames with the camera held
-// at `config.fixedCameraFrame`; returns `output` (default: its first float output). What
-// `fovea reference` renders, in process (defined in ReferenceCommand.cpp). Errors about the
-// output name `outputOption`.
-image::ImageRGBA renderReferenceImage(gpu::Context& ctx, RunScene& scene,
-                                      const graph::GraphDesc& desc, const std::string& graphFile,
-                                      uint32_t spp, const GraphRunConfig& config,
-                                      const std::string& output, const std::string& outputOption,
-                                      bool quiet);
+namespace fovea::eval {
 
 // The output compared with a reference: `requested` (must be one of the graph's marked outputs,
 // alive) or, when empty, the first float output. Errors name `option`.
 std::string selectComparedOutput(const GraphRunner& runner, const std::string& requested,
                                  const std::string& option);
 
-}  // namespace fovea::app
+}  // namespace fovea::eval

@@ -1,9 +1,9 @@
-#include "apps/fovea/Progress.h"
+#include "eval/run/Progress.h"
 
 #include <cstdio>
 #include <string>
 
-namespace fovea::app {
+namespace fovea::eval {
 
 namespace {
 double secondsSince(std::chrono::steady_clock::time_point t) {
@@ -52,4 +52,4 @@ void Progress::finish() {
     if (mDrawn) std::fputc('\n', stderr);
 }
 
-}  // namespace fovea::app
+}  // namespace fovea::eval

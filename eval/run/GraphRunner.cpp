@@ -1,4 +1,4 @@
-#include "apps/fovea/GraphRunner.h"
+#include "eval/run/GraphRunner.h"
 
 #include <algorithm>
 #include <chrono>
@@ -11,7 +11,7 @@
 #include "core/vk/Formats.h"
 #include "core/vk/Resources.h"
 
-namespace fovea::app {
+namespace fovea::eval {
 
 gpu::Context& openDevice(std::optional<gpu::Context>& device, const std::string& selector,
                          bool validation, bool quiet) {
@@ -133,4 +133,4 @@ std::string selectComparedOutput(const GraphRunner& runner, const std::string& r
     return requested;
 }
 
-}  // namespace fovea::app
+}  // namespace fovea::eval

@@ -5,7 +5,7 @@
 #include <chrono>
 #include <cstdint>
 
-namespace fovea::app {
+namespace fovea::eval {
 
 class Progress {
 public:
@@ -22,4 +22,4 @@ private:
     std::chrono::steady_clock::time_point mStart, mLastDraw;
 };
 
-}  // namespace fovea::app
+}  // namespace fovea::eval

@@ -2,7 +2,6 @@
 // --gaze/--jitter options, loading the scene onto the GPU, and the camera of every frame (a path,
 // a glTF camera or the default framing camera) handed to the graph before each frame.
 #pragma once
-#include <CLI/CLI.hpp>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -22,7 +21,7 @@ class SceneGpu;
 struct ViewProbe;
 }  // namespace fovea::scene
 
-namespace fovea::app {
+namespace fovea::eval {
 
 struct SceneOptions {
     std::string scene;  // empty: the graph's defaults.scene, else none; "none" = no scene
@@ -55,9 +54,6 @@ struct SceneOptions {
 
 // `--camera frame`: a camera framing the scene's bounds (Scene::defaultCamera).
 inline constexpr const char* kFrameCamera = "frame";
-
-// Adds the options above to a subcommand.
-void addSceneOptions(CLI::App& cmd, SceneOptions& o);
 
 // What identifies --env and its options (file, intensity, rotation, and the file's size and
 // modification time, so that a changed file under the same name is noticed): report.json's
@@ -116,4 +112,4 @@ private:
     double mLoadMs = 0.0, mUploadMs = 0.0;
 };
 
-}  // namespace fovea::app
+}  // namespace fovea::eval
