@@ -183,19 +183,17 @@ SeedRun runBenchSeed(const BenchSpec& spec, const BenchGraph& g, uint64_t seed, 
         m.source.choose(run.output);
         if (m.second) m.second->choose(run.output);
     }
-    run.errors.assign(references.size(), FrameErrors());
+    // Every error track (and the noise floors) splits by the same layers and scores ꟻLIP alike.
     const bool displayEncoded = runner.displayEncoded(run.output);
-    for (auto& e : run.errors) {
-        if (layers) e.setLayers(*layers);
-        e.setFlip(spec.flip, displayEncoded);
-    }
-    if (floors) {
-        floors->assign(references.size(), FrameErrors());
-        for (auto& e : *floors) {
+    auto tracks = [&](std::vector<FrameErrors>& errors) {
+        errors.assign(references.size(), FrameErrors());
+        for (auto& e : errors) {
             if (layers) e.setLayers(*layers);
             e.setFlip(spec.flip, displayEncoded);
         }
-    }
+    };
+    tracks(run.errors);
+    if (floors) tracks(*floors);
     std::vector<size_t> warmSamples;  // per node: gpuMs entries of the warm-up
     std::vector<uint64_t> warmExecutions;
     if (!quiet)

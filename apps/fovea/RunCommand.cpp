@@ -85,6 +85,19 @@ void addRunCommand(CLI::App& app, RunOptions& o) {
 
 namespace {
 
+// --no-flip, --flip-mode and --flip-ppd as a FlipChoice; each needs --reference.
+FlipChoice flipChoiceOf(const RunOptions& o) {
+    if (o.reference.empty() && (o.noFlip || o.flipMode != "auto" || !o.flipPpd.empty()))
+        throw InputError(
+            o.noFlip ? "--no-flip" : (o.flipMode != "auto" ? "--flip-mode" : "--flip-ppd"), "",
+            "needs --reference");
+    FlipChoice flip;
+    flip.enabled = !o.noFlip;
+    flip.mode = o.flipMode;
+    if (!o.flipPpd.empty()) parseFlipPpd(o.flipPpd, flip);  // checked by the option's validator
+    return flip;
+}
+
 std::set<uint32_t> parseSaveFrames(const std::string& text, uint32_t frames) {
     std::set<uint32_t> out;
     if (text.empty())
@@ -221,14 +234,7 @@ int runCommand(const RunOptions& o) {
         throw InputError("--reference-output", "", "needs --reference");
     if (!o.referenceNoise.empty() && o.reference.empty())
         throw InputError("--reference-noise", "", "needs --reference");
-    FlipChoice flip;
-    flip.enabled = !o.noFlip;
-    flip.mode = o.flipMode;
-    if (!o.flipPpd.empty()) parseFlipPpd(o.flipPpd, flip);  // checked by the option's validator
-    if (o.reference.empty() && (o.noFlip || o.flipMode != "auto" || !o.flipPpd.empty()))
-        throw InputError(
-            o.noFlip ? "--no-flip" : (o.flipMode != "auto" ? "--flip-mode" : "--flip-ppd"), "",
-            "needs --reference");
+    const FlipChoice flip = flipChoiceOf(o);
     std::optional<ReferenceSource> reference, referenceNoise;
     if (!o.reference.empty()) {
         reference.emplace(o.reference, "--reference", width, height);

@@ -138,7 +138,8 @@ std::vector<float> ldrFlip(const Opponent& test, const Opponent& reference, doub
     const flip::FeatureKernels kernels = flip::featureKernels(ppd);
     const Features fTest = features(test.y, kernels);
     const Features fReference = features(reference.y, kernels);
-    const float cMax = maxColourError(), pcCmax = kPc * cMax;
+    static const float cMax = maxColourError();  // a constant of the colour space
+    const float pcCmax = kPc * cMax;
     std::vector<float> error(labTest.size());
     for (size_t i = 0; i < error.size(); ++i) {
         const float dc = std::pow(flip::hyab(labTest[i], labReference[i]), kQc);
