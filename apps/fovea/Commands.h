@@ -9,6 +9,7 @@
 
 #include "apps/fovea/EvalNames.h"
 #include "core/graph/GraphDesc.h"
+#include "eval/run/GraphLoading.h"
 #include "eval/run/SceneSetup.h"
 
 namespace fovea::app {
@@ -19,13 +20,6 @@ constexpr int kExitInput = 2;
 
 // Adds the scene options (eval::SceneOptions) to a subcommand (SceneOptionsCli.cpp).
 void addSceneOptions(CLI::App& cmd, SceneOptions& o);
-
-struct GraphOptions {
-    std::string graph;
-    std::string size;               // "WxH", empty = graph default
-    std::vector<std::string> sets;  // pass.param=value
-    bool noAliasing = false;
-};
 
 struct RunOptions {
     GraphOptions graph;
@@ -73,6 +67,11 @@ struct BenchOptions {
     std::string file, out, device;
     std::string cameraModel;  // --camera-model: overrides the bench file's camera_model
     bool validation = false, overwrite = false, quiet = false;
+    // Sharded benches (docs/cluster.md): --plan prints the items, --item K runs one into --out,
+    // --collect DIR writes the tables from their results.
+    bool plan = false;
+    std::optional<size_t> item;
+    std::string collect;
 };
 void addBenchCommand(CLI::App& app, BenchOptions& options);
 int benchCommand(const BenchOptions& options);
@@ -141,13 +140,5 @@ struct GainOptions {
 };
 void addGainCommand(CLI::App& app, GainOptions& options);
 int gainCommand(const GainOptions& options);
-
-// Shared by run/validate/bench: parse the graph file and apply --set overrides (each checked
-// against the pass's declared parameters, errors naming the flag).
-graph::GraphDesc loadGraph(const GraphOptions& options);
-// "256x128" -> {256, 128}; errors name `flag`.
-std::array<uint32_t, 2> parseSize(const std::string& text, const std::string& flag);
-// Render size from --size or the graph's defaults (256x256 when neither gives one).
-std::array<uint32_t, 2> renderSize(const GraphOptions& options, const graph::GraphDesc& desc);
 
 }  // namespace fovea::app

@@ -207,6 +207,20 @@ nlohmann::json metricsToJson(const ImageMetrics& m, const MetricOptions& options
     return j;
 }
 
+ImageMetrics metricsFromJson(const nlohmann::json& j) {
+    ImageMetrics m;
+    m.mse = j.at("mse").get<double>();
+    m.rmse = j.at("rmse").get<double>();
+    m.rmsePercent = j.at("rmse_percent").get<double>();
+    m.relMse = j.at("rel_mse").get<double>();
+    const auto& psnr = j.at("psnr_db");
+    m.psnr = psnr.is_null() ? std::numeric_limits<double>::infinity() : psnr.get<double>();
+    m.ssim = j.at("ssim").get<double>();
+    m.meanAbsLuminanceDiff = j.at("temporal_error").get<double>();
+    if (j.contains("flip_mean")) m.flipMean = j["flip_mean"].get<double>();
+    return m;
+}
+
 double temporalError(const image::ImageRGBA& previous, const image::ImageRGBA& current,
                      const std::string& previousName, const std::string& currentName) {
     checkPair(previous, current, previousName, currentName);

@@ -48,6 +48,10 @@ ImageMetrics computeMetrics(const image::ImageRGBA& test, const image::ImageRGBA
 // temporal_error, and flip_mean when metrics.flipMean is a number. For report.json / bench.json
 // too, so every tool uses the same keys.
 nlohmann::json metricsToJson(const ImageMetrics& metrics, const MetricOptions& options);
+// The inverse for the figures (a saved result read back, e.g. a bench item's): psnr_db null is
+// +infinity, a missing flip_mean NaN; width and height stay 0 (not in the JSON). Throws
+// nlohmann's type_error when a figure is not a number.
+ImageMetrics metricsFromJson(const nlohmann::json& metrics);
 
 // Throws InputError "<name>: pixel (x, y) channel G is NaN" at the first non-finite RGB value.
 void checkFinite(const image::ImageRGBA& image, const std::string& name);

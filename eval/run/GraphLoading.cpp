@@ -1,11 +1,12 @@
+#include "eval/run/GraphLoading.h"
+
 #include <regex>
 
-#include "apps/fovea/Commands.h"
 #include "core/graph/PassRegistry.h"
 #include "core/util/DidYouMean.h"
 #include "core/util/Error.h"
 
-namespace fovea::app {
+namespace fovea::eval {
 
 std::array<uint32_t, 2> parseSize(const std::string& text, const std::string& flag) {
     static const std::regex kPattern(R"((\d{1,5})x(\d{1,5}))");
@@ -52,4 +53,4 @@ graph::GraphDesc loadGraph(const GraphOptions& options) {
     return desc;
 }
 
-}  // namespace fovea::app
+}  // namespace fovea::eval
