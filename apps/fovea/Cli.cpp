@@ -12,6 +12,7 @@ void addCommands(CLI::App& app, CliOptions& o) {
     app.set_version_flag("--version", FOVEA_VERSION);
     addRunCommand(app, o.run);
     addReferenceCommand(app, o.reference);
+    addMergeCommand(app, o.merge);
     addValidateCommand(app, o.validate);
     addPassesCommand(app, o.passes);
     addCompareCommand(app, o.compare);
@@ -38,6 +39,7 @@ int runSubcommand(const CLI::App& app, const CliOptions& o) {
     registerBuiltinPasses();
     if (app.got_subcommand("run")) return runCommand(o.run);
     if (app.got_subcommand("reference")) return referenceCommand(o.reference);
+    if (app.got_subcommand("merge")) return mergeCommand(o.merge);
     if (app.got_subcommand("validate")) return validateCommand(o.validate);
     if (app.got_subcommand("passes")) return passesCommand(o.passes);
     if (app.got_subcommand("compare")) return compareCommand(o.compare);

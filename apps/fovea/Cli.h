@@ -14,6 +14,7 @@ struct CliOptions {
     ValidateOptions validate;
     PassesOptions passes;
     ReferenceOptions reference;
+    MergeOptions merge;
     CompareOptions compare;
     BenchOptions bench;
     InspectOptions inspect;

@@ -58,9 +58,22 @@ struct ReferenceOptions {
     int spp = 1024;
     int64_t pathFrame = -1;     // --path-frame; -1 = none
     bool pixelCentres = false;  // --pixel-centres: graphs/reference_pixel_centres.json
+    // Sharded references (eval/reference/ReferenceShards.h, docs/cluster.md): --shard I/N (by
+    // samples), --path-frames FIRST:LAST (per-frame references of a camera path) with
+    // --frames-of I/N (by frames); "" = not given.
+    std::string shard, pathFrames, framesOf;
 };
 void addReferenceCommand(CLI::App& app, ReferenceOptions& options);
 int referenceCommand(ReferenceOptions options);
+
+// `fovea merge`: reference shards into the files of one `fovea reference` (docs/cluster.md).
+struct MergeOptions {
+    std::vector<std::string> shards;
+    std::string out;
+    bool overwrite = false, quiet = false;
+};
+void addMergeCommand(CLI::App& app, MergeOptions& options);
+int mergeCommand(const MergeOptions& options);
 
 // `fovea bench`: run time against error of several graphs (docs/bench.md).
 struct BenchOptions {

@@ -356,4 +356,10 @@ const gpu::Image& RenderGraph::image(const std::string& resourceName) const {
     throw RuntimeError("no live image resource or connected image input '" + resourceName + "'");
 }
 
+void RenderGraph::setFirstFrameIndex(uint64_t index) {
+    // History rings and "created at" frames are counted from the index at build.
+    if (mBuilt) throw RuntimeError("setFirstFrameIndex: call it before build()");
+    mFrame.index = index;
+}
+
 }  // namespace fovea::graph

@@ -98,6 +98,10 @@ public:
     uint64_t frameIndex() const { return mFrame.index; }
     uint64_t framesSinceReset() const { return mFrame.framesSinceReset; }
     void setSeed(uint64_t seed) { mFrame.seed = seed; }
+    // The index the next frame gets (FrameInfo::index: the path tracer's sample streams and the
+    // camera jitter follow it). Before build only: a shard of a reference continues where the
+    // frames of the shard before it end (eval/reference/ReferenceShards.h).
+    void setFirstFrameIndex(uint64_t index);
 
     // The current content of an alive resource ("pass.field"), e.g. a marked output; for a
     // connected input ("pass.input") the image that input read in the last frame (delay included).

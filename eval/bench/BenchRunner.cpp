@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "core/util/Error.h"
+#include "core/util/Hash.h"
 #include "core/vk/Context.h"
 #include "eval/reference/ReferenceRender.h"
 #include "eval/report/OutputFolder.h"
@@ -308,12 +309,7 @@ std::string benchKey(const BenchSpec& spec) {
     // The file as parsed JSON (formatting and key order do not matter), with the version: a result
     // of another bench file or another fovea is refused, not mixed in.
     const json file = json::parse(std::ifstream(spec.file), nullptr, false);
-    const std::string text = file.dump() + "\n" + FOVEA_VERSION;
-    uint64_t h = 1469598103934665603ull;  // FNV-1a, 64 bit
-    for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
-    char hex[17];
-    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-    return hex;
+    return fnv1aHex(file.dump() + "\n" + FOVEA_VERSION);
 }
 
 json benchPlanJson(const BenchSpec& spec) {

@@ -47,8 +47,9 @@ GraphRunner::GraphRunner(gpu::Context& ctx, RunScene& scene, const graph::GraphD
     options.sceneFeatures = scene.features();
     mGraph.setScene(scene.gpu());
     // Passes may size or specialize themselves from the first camera, so it is set before build.
-    mGraph.setCamera(
-        scene.frameCamera(config.fixedCameraFrame.value_or(0), config.width, config.height));
+    mGraph.setCamera(scene.frameCamera(config.fixedCameraFrame.value_or(config.firstFrame),
+                                       config.width, config.height));
+    mGraph.setFirstFrameIndex(config.firstFrame);
     auto start = std::chrono::steady_clock::now();
     mGraph.build(desc, options);
     mBuildMs =
@@ -58,8 +59,9 @@ GraphRunner::GraphRunner(gpu::Context& ctx, RunScene& scene, const graph::GraphD
 
 graph::FrameTiming GraphRunner::runFrame() {
     if (mFrames > 0)
-        mGraph.setCamera(mScene.frameCamera(mConfig.fixedCameraFrame.value_or(mFrames),
-                                            mConfig.width, mConfig.height));
+        mGraph.setCamera(
+            mScene.frameCamera(mConfig.fixedCameraFrame.value_or(mConfig.firstFrame + mFrames),
+                               mConfig.width, mConfig.height));
     graph::FrameTiming t = mGraph.runFrame();
     ++mFrames;
     return t;

@@ -33,6 +33,9 @@ struct GraphRunConfig {
     // Set: every frame uses the camera of this camera-path frame (a converged reference of one
     // frame of a moving path); unset: frame f uses the path's frame f.
     std::optional<uint64_t> fixedCameraFrame;
+    // The graph's index of the first frame (RenderGraph::setFirstFrameIndex): a reference shard
+    // renders frames [firstFrame, ...) of the single run's sample streams.
+    uint64_t firstFrame = 0;
 };
 
 class GraphRunner {

@@ -66,6 +66,24 @@ nlohmann::json environmentKey(const SceneOptions& o) {
     return j;
 }
 
+nlohmann::json sceneOptionsKey(const SceneOptions& o) {
+    auto file = [](const std::string& path) {
+        std::error_code ec;
+        const auto bytes = fs::is_regular_file(path, ec) ? fs::file_size(path, ec) : 0;
+        return nlohmann::json{{"path", path}, {"bytes", ec ? 0 : bytes}};
+    };
+    return {{"scene", file(o.scene)},
+            {"camera", file(o.camera)},
+            {"stereo", o.stereo},
+            {"mono", o.mono},
+            {"camera_model", o.cameraModel},
+            {"ipd", o.ipd},
+            {"gaze", o.gaze},
+            {"jitter", o.jitter},
+            {"sun", o.sun},
+            {"env", environmentKey(o)}};
+}
+
 std::array<glm::vec2, scene::kMaxEyes> parseGaze(const std::string& text) {
     std::vector<float> v;
     std::stringstream s(text);

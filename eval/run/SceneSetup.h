@@ -59,6 +59,9 @@ inline constexpr const char* kFrameCamera = "frame";
 // modification time, so that a changed file under the same name is noticed): report.json's
 // scene.environment and the bench's reference cache key. Null without --env.
 nlohmann::json environmentKey(const SceneOptions& o);
+// Every scene option as JSON, with the size of a scene or camera-path file (what a reference
+// shard's key records, ReferenceShards.h).
+nlohmann::json sceneOptionsKey(const SceneOptions& o);
 
 // Parses "x,y" or "xl,yl,xr,yr" in [0,1]; errors name --gaze.
 std::array<glm::vec2, scene::kMaxEyes> parseGaze(const std::string& text);
