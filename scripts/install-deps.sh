@@ -13,6 +13,8 @@ PACKAGES=(
   clang libclang-rt-14-dev
   # CC0 HDR environment maps (studiolights/world/*.exr) for the --env tests (docs/scenes.md)
   blender-data
+  # A one-node Slurm on the loopback for the sharded reference/bench test (docs/cluster.md)
+  slurm-wlm munge
 )
 missing=()
 for p in "${PACKAGES[@]}"; do
