@@ -2,10 +2,13 @@
 # Sharded references and benches on Slurm, or locally in parallel (docs/cluster.md).
 #
 #   scripts/slurm/submit.sh reference --shards N --out DIR [options] -- [fovea reference args]
+#   scripts/slurm/submit.sh reference --frame-shards N --out DIR [options] -- \
+#       --camera PATH --path-frames A:B [fovea reference args]
 #   scripts/slurm/submit.sh bench BENCH.json --out DIR [options]
 #
-# reference: an sbatch array of N shards (`fovea reference ARGS --shard I/N --out DIR/shardI`),
-#            then a job `fovea merge DIR/shard* --out DIR/merged` after all of them succeeded.
+# reference: an sbatch array of N shards (`fovea reference ARGS --shard I/N --out DIR/shardI`,
+#            or with --frame-shards `--frames-of I/N`: blocks of the path frames), then a job
+#            `fovea merge DIR/shard* --out DIR/merged` after all of them succeeded.
 # bench:     an array of the bench's reference items, an array of its runs after them, then
 #            `fovea bench --collect DIR` (items and order from `fovea bench --plan`).
 #
@@ -28,7 +31,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 
 [[ $# -ge 1 ]] || die "usage: submit.sh reference|bench ... (see the header of this script)"
 mode=$1; shift
-bench="" out="" shards="" local_jobs="" fovea="" dry=0
+bench="" out="" shards="" split=--shard local_jobs="" fovea="" dry=0
 sbatch_args=(--cpus-per-task=1)
 fovea_args=()
 if [[ $mode == bench ]]; then
@@ -42,6 +45,7 @@ while [[ $# -gt 0 ]]; do
   case $1 in
     --out) out=$2; shift 2 ;;
     --shards) shards=$2; shift 2 ;;
+    --frame-shards) shards=$2; split=--frames-of; shift 2 ;;
     --fovea) fovea=$2; shift 2 ;;
     --local) local_jobs=$2; shift 2 ;;
     --gres) sbatch_args+=("--gres=$2"); shift 2 ;;
@@ -110,12 +114,12 @@ run_local() {
 join() { local IFS=,; echo "$*"; }
 
 if [[ $mode == reference ]]; then
-  [[ $shards =~ ^[1-9][0-9]*$ ]] || die "reference needs --shards N (N >= 1)"
+  [[ $shards =~ ^[1-9][0-9]*$ ]] || die "reference needs --shards N or --frame-shards N (N >= 1)"
   pending=()
   for ((i = 0; i < shards; ++i)); do
     [[ -f $out/shard$i/shard.json ]] || pending+=("$i")
   done
-  shard_cmd="$(q "$fovea" reference "${fovea_args[@]}") --shard \$I/$shards --out $(q1 "$out")/shard\$I --overwrite --quiet"
+  shard_cmd="$(q "$fovea" reference "${fovea_args[@]}") $split \$I/$shards --out $(q1 "$out")/shard\$I --overwrite --quiet"
   merge_cmd="$(q "$fovea" merge) $(for ((i = 0; i < shards; ++i)); do q "$out/shard$i"; done) --out $(q "$out/merged") --overwrite"
   echo "submit.sh: ${#pending[@]} of $shards shards to render: $(join "${pending[@]}")" >&2
   if [[ -n $local_jobs ]]; then
