@@ -9,6 +9,7 @@
 #include "core/graph/Param.h"
 #include "core/graph/PassRegistry.h"
 #include "core/util/Error.h"
+#include "core/util/InstallPaths.h"
 #include "core/vk/Context.h"
 #include "eval/reference/ReferenceErrors.h"
 #include "eval/reference/ReferenceRender.h"
@@ -24,9 +25,9 @@ namespace fs = std::filesystem;
 void addReferenceCommand(CLI::App& app, ReferenceOptions& o) {
     auto* cmd = app.add_subcommand(
         "reference", "render a converged reference image (PathTrace + Accumulate) of a scene");
-    o.run.graph.graph = (fs::path(FOVEA_SOURCE_DIR) / "graphs" / "reference.json").string();
+    o.run.graph.graph = shippedGraph("reference.json");
     cmd->add_option("--graph", o.run.graph.graph,
-                    "reference graph (default: graphs/reference.json of this source tree)");
+                    "reference graph (default: graphs/reference.json of the install or source tree)");
     cmd->add_flag("--pixel-centres", o.pixelCentres,
                   "primary rays through pixel centres, no jitter (graphs/"
                   "reference_pixel_centres.json): the reference of a denoiser's own error when its "
@@ -135,12 +136,12 @@ int shardedReference(const ReferenceOptions& o) {
 }  // namespace
 
 int referenceCommand(ReferenceOptions o) {
-    const fs::path defaultGraph = fs::path(FOVEA_SOURCE_DIR) / "graphs" / "reference.json";
+    const fs::path defaultGraph = shippedGraph("reference.json");
     if (o.pixelCentres) {
         if (o.run.graph.graph != defaultGraph.string())
             throw InputError("--pixel-centres", "", "chooses the graph itself; drop --graph");
         o.run.graph.graph =
-            (fs::path(FOVEA_SOURCE_DIR) / "graphs" / "reference_pixel_centres.json").string();
+            shippedGraph("reference_pixel_centres.json");
     }
     if (o.pathFrame >= 0) {
         if (o.run.scene.camera.empty())

@@ -1,5 +1,7 @@
 #include "core/vk/Context.h"
 
+#include "core/util/InstallPaths.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
@@ -372,7 +374,7 @@ Context::Context(const ContextOptions& options)
     mNearestClamp = makeSampler(mDevice, vk::Filter::eNearest);
     setObjectName(*mLinearClamp, "linearClampSampler");
     setObjectName(*mNearestClamp, "nearestClampSampler");
-    mShaderCompiler = std::make_unique<ShaderCompiler>(FOVEA_SHADER_DIR, defaultShaderCacheDir());
+    mShaderCompiler = std::make_unique<ShaderCompiler>(shaderRoot(), defaultShaderCacheDir());
 }
 
 Context::~Context() {

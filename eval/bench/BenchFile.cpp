@@ -9,6 +9,7 @@
 #include "core/scene/Camera.h"
 #include "core/util/DidYouMean.h"
 #include "core/util/Error.h"
+#include "core/util/InstallPaths.h"
 #include "core/util/JsonUtil.h"
 #include "core/util/UserFile.h"
 #include "eval/bench/Bench.h"
@@ -109,7 +110,7 @@ BenchReference parseReference(const Reader& r, const json& j) {
         r.fail("/reference", "expected an EXR path, \"render\" or {\"render\": {\"spp\": N, ...}}");
     }
     if (ref.render && ref.graph.empty())
-        ref.graph = (fs::path(FOVEA_SOURCE_DIR) / "graphs" / "reference.json").string();
+        ref.graph = shippedGraph("reference.json");
     return ref;
 }
 

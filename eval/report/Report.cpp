@@ -51,6 +51,7 @@ nlohmann::json buildReport(const graph::RenderGraph& graph, const ReportInputs& 
         {"graph", in.graphFile},
         {"scene", in.scene},
         {"device", {{"name", in.deviceName}, {"driver", in.driver}}},
+        {"shader_dir", in.shaderDir},
         {"size", {in.width, in.height}},
         {"frames", in.frames},
         {"seed", in.seed},

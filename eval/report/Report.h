@@ -16,6 +16,7 @@ nlohmann::json statsJson(const Stats& s);
 
 struct ReportInputs {
     std::string graphFile, deviceName, driver;
+    std::string shaderDir;  // the shader folder the run compiled from (core/util/InstallPaths.h)
     nlohmann::json scene = "none";  // "none" or RunScene::json()
     uint32_t width = 0, height = 0, frames = 0;
     uint64_t seed = 0;

@@ -101,6 +101,7 @@ ReportInputs GraphRunner::reportBase(const std::string& graphFile, uint32_t fram
     report.buildMs = mBuildMs;
     report.deviceName = mCtx.deviceName();
     report.driver = mCtx.driverName() + " " + mCtx.driverInfo();
+    report.shaderDir = mCtx.shaderCompiler().shaderRoot().string();
     report.width = mConfig.width;
     report.height = mConfig.height;
     report.frames = frames;
