@@ -76,8 +76,11 @@ q() { printf '%q ' "$@"; }  # a command line, quoted for a job script
 q1() { printf '%q' "$1"; }  # one word, quoted, no trailing space
 
 # Writes a job script running `command` (for arrays, $SLURM_ARRAY_TASK_ID is the item) and
-# submits it: prints its job id. Args: name, array list ("" = no array), dependency id ("" =
-# none), command...
+# submits it: prints its job id. The commands `exec` fovea, so the job's process is fovea itself:
+# a cancelled or pre-empted task's SIGTERM reaches it, and no fovea outlives its shell (Slurm's
+# linuxproc tracking loses a child whose shell died first, which then finished and wrote its done
+# marker after the cancel: seen in CI). Args: name, array list ("" = no array), dependency id
+# ("" = none), command...
 submit() {
   local name=$1 array=$2 after=$3; shift 3
   local script="$jobs_dir/$name.sh"
@@ -129,10 +132,10 @@ if [[ $mode == reference ]]; then
   fi
   shard_job=""
   if [[ ${#pending[@]} -gt 0 ]]; then
-    shard_job=$(submit reference-shards "$(join "${pending[@]}")" "" "I=\$SLURM_ARRAY_TASK_ID; $shard_cmd")
+    shard_job=$(submit reference-shards "$(join "${pending[@]}")" "" "I=\$SLURM_ARRAY_TASK_ID; exec $shard_cmd")
     echo "shards $shard_job"
   fi
-  echo "merge $(submit reference-merge "" "$shard_job" "$merge_cmd")"
+  echo "merge $(submit reference-merge "" "$shard_job" "exec $merge_cmd")"
   exit 0
 fi
 
@@ -157,11 +160,11 @@ if [[ -n $local_jobs ]]; then
 fi
 ref_job="" run_job=""
 if [[ ${#refs[@]} -gt 0 ]]; then
-  ref_job=$(submit bench-references "$(join "${refs[@]}")" "" "I=\$SLURM_ARRAY_TASK_ID; $item_cmd")
+  ref_job=$(submit bench-references "$(join "${refs[@]}")" "" "I=\$SLURM_ARRAY_TASK_ID; exec $item_cmd")
   echo "references $ref_job"
 fi
 if [[ ${#runs[@]} -gt 0 ]]; then
-  run_job=$(submit bench-runs "$(join "${runs[@]}")" "$ref_job" "I=\$SLURM_ARRAY_TASK_ID; $item_cmd")
+  run_job=$(submit bench-runs "$(join "${runs[@]}")" "$ref_job" "I=\$SLURM_ARRAY_TASK_ID; exec $item_cmd")
   echo "runs $run_job"
 fi
-echo "collect $(submit bench-collect "" "${run_job:-$ref_job}" "$collect_cmd")"
+echo "collect $(submit bench-collect "" "${run_job:-$ref_job}" "exec $collect_cmd")"
