@@ -64,4 +64,20 @@ if unshare -m true 2> /dev/null; then
 else
   echo "NOTE: no private mount namespace here (unshare -m); the source-tree-hidden case is skipped"
 fi
+# An application against the installed package (find_package(fovea)), with a pass of its own.
+if [[ ${FOVEA_INSTALL_TEST_EXAMPLE:-1} == 1 ]]; then
+  for f in "$tmp/prefix/lib/cmake/fovea/foveaConfig.cmake" "$tmp/prefix/include/fovea/core/graph/Pass.h" \
+           "$tmp/prefix/lib/libfovea_core.a"; do
+    [[ -e $f ]] || fail "not installed: $f"
+  done
+  cmake -S "$src/examples/custom_pass" -B "$tmp/example" -G Ninja \
+    -DCMAKE_PREFIX_PATH="$tmp/prefix" > "$tmp/example.log" 2>&1 ||
+    { cat "$tmp/example.log"; fail "examples/custom_pass does not configure against the install"; }
+  if grep -qF -e "-I$src " -e "-isystem $src " "$tmp/example/build.ninja"; then
+    fail "the example's build reads headers from the source tree, not the install"
+  fi
+  cmake --build "$tmp/example" >> "$tmp/example.log" 2>&1 ||
+    { tail -40 "$tmp/example.log"; fail "examples/custom_pass does not build against the install"; }
+  "$tmp/example/custom_pass" || fail "examples/custom_pass failed"
+fi
 echo "PASS"
