@@ -161,7 +161,7 @@ void collectBench(const BenchSpec& spec, const std::vector<json>& results,
             benchResults[i].difference = pairedDifference(
                 benchResults[i].errors, benchResults[0].errors, benchResults[0].graph.label);
     const json& firstRun = *runs.front().front();
-    const json header = benchHeader(spec, results, firstRun, checkBenchInputs(spec));
+    const json header = benchHeader(spec, results, firstRun, benchLayerRadii(spec));
 
     const fs::path& dir = folder.path();
     const std::string deviceName = firstRun.at("device").at("name").get<std::string>();

@@ -109,8 +109,7 @@ BenchReference parseReference(const Reader& r, const json& j) {
     } else {
         r.fail("/reference", "expected an EXR path, \"render\" or {\"render\": {\"spp\": N, ...}}");
     }
-    if (ref.render && ref.graph.empty())
-        ref.graph = shippedGraph("reference.json");
+    if (ref.render && ref.graph.empty()) ref.graph = shippedGraph("reference.json");
     return ref;
 }
 

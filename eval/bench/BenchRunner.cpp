@@ -137,16 +137,6 @@ json renderReference(const BenchSpec& spec, const fs::path& dir, bool noiseFloor
     return info;
 }
 
-// The radii of the per-layer errors: the bench's "layers", else the FoveationMask facts (after
-// --set) of the first graph that has one; none when no graph has.
-std::optional<LayerRadii> layerRadii(const BenchSpec& spec) {
-    if (spec.layers) return spec.layers;
-    for (const auto& g : spec.graphs)
-        if (auto radii = foveationRadiiOf(loadBenchGraph(spec, g.file, g.sets, g.pointer)))
-            return radii;
-    return std::nullopt;
-}
-
 // The references one output is measured against: the bench's own and BenchSpec::against, each
 // with an optional second reference of another seed (its noise floor).
 struct MeasuredReference {
@@ -201,7 +191,7 @@ std::vector<MeasuredReference> measuredReferences(const BenchSpec& spec, const f
 json runGraphSeed(const BenchSpec& spec, const BenchGraph& g, uint64_t seed, const fs::path& dir,
                   gpu::Context& ctx, bool floors, bool quiet) {
     std::vector<MeasuredReference> references = measuredReferences(spec, dir);
-    const std::optional<LayerRadii> layers = layerRadii(spec);
+    const std::optional<LayerRadii> layers = benchLayerRadii(spec);
     graph::GraphDesc desc = loadBenchGraph(spec, g.file, g.sets, g.pointer);
     RunScene scene(sceneOptions(spec), desc);
     uploadScene(ctx, scene, quiet);
@@ -345,7 +335,16 @@ std::optional<LayerRadii> checkBenchInputs(const BenchSpec& spec) {
         referenceSource(spec, a.file, a.pointer + "/reference");
         if (!a.noiseFloor.empty()) referenceSource(spec, a.noiseFloor, a.pointer + "/noise_floor");
     }
-    return layerRadii(spec);
+    return benchLayerRadii(spec);
+}
+
+std::optional<LayerRadii> benchLayerRadii(const BenchSpec& spec) {
+    // The FoveationMask facts (after --set) of the first graph that has one; none when none has.
+    if (spec.layers) return spec.layers;
+    for (const auto& g : spec.graphs)
+        if (auto radii = foveationRadiiOf(loadBenchGraph(spec, g.file, g.sets, g.pointer)))
+            return radii;
+    return std::nullopt;
 }
 
 json runBenchItem(const BenchSpec& spec, const BenchItem& item, const fs::path& dir,

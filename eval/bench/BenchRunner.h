@@ -45,6 +45,8 @@ std::filesystem::path benchItemResult(const BenchItem& item);
 // naming the bench file and pointer) before any device exists; returns the radii of the
 // per-layer errors (the bench's "layers", else the first graph's FoveationMask facts).
 std::optional<LayerRadii> checkBenchInputs(const BenchSpec& spec);
+// Only the radii (no file checks): the bench's "layers", else the first FoveationMask's facts.
+std::optional<LayerRadii> benchLayerRadii(const BenchSpec& spec);
 
 // Runs one item, `dir` being the bench's output folder. A reference item renders into
 // dir/reference or dir/reference_noise_floor (each taken as its own OutputFolder), reusing what is

@@ -136,7 +136,8 @@ void renderReferenceShard(gpu::Context& ctx, RunScene& scene, const ShardRequest
             folder.write(frameFile(f), [&](const fs::path& path) { image::writeExr(path, img); });
             list.push_back(f);
         }
-        info.update({{"frames", list}, {"samples", r.spp}});
+        // Per frame: the whole frames the spp round up to, as renderReferenceImage renders them.
+        info.update({{"frames", list}, {"samples", referenceFrames(r.spp, perFrame) * perFrame}});
     }
     checkValidation(ctx);
     info["render_ms"] =
