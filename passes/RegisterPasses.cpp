@@ -36,6 +36,8 @@ graph::PassTypeInfo info(const char* type, const char* doc) {
 
 void registerBuiltinPasses() {
     auto& r = graph::passRegistry();
+    // Idempotent: the registry refuses a type twice, and tests call this once per fixture.
+    if (r.find("ImageSource")) return;
     r.add(info<passes::ImageSourcePass>(
         "ImageSource", "Synthetic image: constant, gradient, seeded noise or the frame index."));
     r.add(info<passes::ImageFilePass>(

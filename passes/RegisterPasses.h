@@ -3,6 +3,7 @@
 #pragma once
 
 namespace fovea {
-// Registers every built-in pass type in graph::passRegistry() (idempotent).
+// Registers every built-in pass type in graph::passRegistry() (idempotent: a second call finds
+// them there and does nothing).
 void registerBuiltinPasses();
 }  // namespace fovea

@@ -1,7 +1,9 @@
 #include "apps/fovea/Cli.h"
 
 #include <algorithm>
+#include <cstdlib>
 
+#include "core/graph/PluginLoader.h"
 #include "core/util/DidYouMean.h"
 #include "passes/RegisterPasses.h"
 
@@ -19,6 +21,13 @@ void addCommands(CLI::App& app, CliOptions& o) {
     addBenchCommand(app, o.bench);
     addInspectCommand(app, o.inspect);
     addGainCommand(app, o.gain);
+    addDevicesCommand(app, o.devices);
+    // Every subcommand knows the passes of a plugin (docs/plugins.md).
+    for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+        sub->add_option("--plugin", o.plugins,
+                        "load the pass types of this plugin library (repeatable; also "
+                        "FOVEA_PLUGIN_PATH)")
+            ->type_name("LIB.so");
 }
 
 std::string unknownSubcommand(CLI::App& app, int argc, const char* const* argv) {
@@ -37,6 +46,11 @@ std::string unknownSubcommand(CLI::App& app, int argc, const char* const* argv) 
 
 int runSubcommand(const CLI::App& app, const CliOptions& o) {
     registerBuiltinPasses();
+    std::vector<graph::PluginFile> plugins;
+    for (const auto& p : o.plugins) plugins.push_back({p, "--plugin"});
+    if (const char* path = std::getenv("FOVEA_PLUGIN_PATH"))
+        for (auto& f : graph::pluginPathFiles(path)) plugins.push_back(std::move(f));
+    (void)graph::loadPassPlugins(plugins, graph::passRegistry());
     if (app.got_subcommand("run")) return runCommand(o.run);
     if (app.got_subcommand("reference")) return referenceCommand(o.reference);
     if (app.got_subcommand("merge")) return mergeCommand(o.merge);
@@ -46,6 +60,7 @@ int runSubcommand(const CLI::App& app, const CliOptions& o) {
     if (app.got_subcommand("bench")) return benchCommand(o.bench);
     if (app.got_subcommand("inspect")) return inspectCommand(o.inspect);
     if (app.got_subcommand("gain")) return gainCommand(o.gain);
+    if (app.got_subcommand("devices")) return devicesCommand(o.devices);
     return kExitInput;
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
 #include "apps/fovea/Commands.h"
 
@@ -19,6 +20,8 @@ struct CliOptions {
     BenchOptions bench;
     InspectOptions inspect;
     GainOptions gain;
+    DevicesOptions devices;
+    std::vector<std::string> plugins;  // --plugin of whichever subcommand ran
 };
 
 // Adds every subcommand to `app` (which must outlive nothing but `options`).
@@ -28,7 +31,8 @@ void addCommands(CLI::App& app, CliOptions& options);
 // naming it (with a suggestion and the list), or "" when the first word is a subcommand or absent.
 std::string unknownSubcommand(CLI::App& app, int argc, const char* const* argv);
 
-// Runs the subcommand `app` parsed. Exceptions propagate (main maps them to exit codes).
+// Registers the built-in pass types and the plugins of --plugin and FOVEA_PLUGIN_PATH, then runs
+// the subcommand `app` parsed. Exceptions propagate (main maps them to exit codes).
 int runSubcommand(const CLI::App& app, const CliOptions& options);
 
 }  // namespace fovea::app

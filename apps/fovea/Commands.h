@@ -103,9 +103,10 @@ int validateCommand(const ValidateOptions& options);
 
 struct PassesOptions {
     bool json = false;
-    bool markdown = false;   // the generated doc tables of each type
-    std::string updateDocs;  // rewrite the generated tables of DIR/<Type>.md
-    std::string checkDocs;   // exit 1 when a page in DIR is stale or missing
+    bool markdown = false;     // the generated doc tables of each type
+    std::string updateDocs;    // rewrite the generated tables of DIR/<Type>.md
+    std::string checkDocs;     // exit 1 when a page in DIR is stale or missing
+    bool pluginsOnly = false;  // only the types plugins registered (a plugin's own docs)
     std::string type;
 };
 void addPassesCommand(CLI::App& app, PassesOptions& options);
@@ -153,5 +154,13 @@ struct GainOptions {
 };
 void addGainCommand(CLI::App& app, GainOptions& options);
 int gainCommand(const GainOptions& options);
+
+// `fovea devices`: the Vulkan devices --device chooses from, and the one it picks by default
+// (scripts/gpu-check.sh records this first).
+struct DevicesOptions {
+    bool json = false;
+};
+void addDevicesCommand(CLI::App& app, DevicesOptions& options);
+int devicesCommand(const DevicesOptions& options);
 
 }  // namespace fovea::app

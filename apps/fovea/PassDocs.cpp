@@ -112,12 +112,21 @@ std::vector<std::string> syncPassDocs(const std::string& dir, const nlohmann::js
         const std::string file =
             (std::filesystem::path(dir) / (pass["type"].get<std::string>() + ".md")).string();
         std::ifstream in(file, std::ios::binary);
-        if (!in) {
+        std::ostringstream text;
+        if (in) {
+            text << in.rdbuf();
+        } else if (write && !std::filesystem::exists(file)) {
+            // A new type (e.g. a plugin's): a starter page around the generated tables.
+            text << "# " << pass["type"].get<std::string>() << "\n\n"
+                 << pass["doc"].get<std::string>() << "\n\n## Fields\n\n"
+                 << kFieldsBegin << "\n"
+                 << kFieldsEnd << "\n\n## Parameters\n\n"
+                 << kParamsBegin << "\n"
+                 << kParamsEnd << "\n";
+        } else {
             problems.push_back(file + ": missing (every registered pass type has a page)");
             continue;
         }
-        std::ostringstream text;
-        text << in.rdbuf();
         std::string updated;
         try {
             updated = updatePassPage(text.str(), pass, file);

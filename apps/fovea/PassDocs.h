@@ -19,8 +19,8 @@ std::string updatePassPage(const std::string& page, const nlohmann::json& pass,
                            const std::string& file);
 
 // Checks or rewrites DIR/<Type>.md for every pass in `passes`; returns one line per stale or
-// missing page (empty = all current). With `write`, stale pages are rewritten (missing pages and
-// pages without markers are still reported).
+// missing page (empty = all current). With `write`, stale pages are rewritten and missing ones
+// created as a starter page (title, summary, the tables); pages without markers are reported.
 std::vector<std::string> syncPassDocs(const std::string& dir, const nlohmann::json& passes,
                                       bool write);
 

@@ -21,6 +21,8 @@ void addPassesCommand(CLI::App& app, PassesOptions& o) {
                     "rewrite the generated tables in DIR/<Type>.md for every pass type");
     cmd->add_option("--check-docs", o.checkDocs,
                     "exit 1 naming every page of DIR whose generated tables are stale or missing");
+    cmd->add_flag("--plugins-only", o.pluginsOnly,
+                  "only the pass types of --plugin / FOVEA_PLUGIN_PATH (a plugin's own docs)");
 }
 
 namespace {
@@ -36,7 +38,7 @@ std::string bufferRule(const graph::BufferSize& b) {
     return text;
 }
 
-nlohmann::json describePass(const graph::PassTypeInfo& info) {
+nlohmann::json describePass(const graph::PassTypeInfo& info, const std::string& origin) {
     auto pass = info.create();
     pass->setIdentity(info.type, info.type);
     graph::applyParamDefaults(*pass);
@@ -66,14 +68,20 @@ nlohmann::json describePass(const graph::PassTypeInfo& info) {
             {"params", graph::describeParams(*pass)},
             {"scene_needs", graph::sceneFeatureNames(pass->sceneNeeds())},
             {"cacheable", pass->cacheable()},
-            {"bypass", pass->bypass()}};
+            {"bypass", pass->bypass()},
+            {"plugin", origin.empty() ? nlohmann::json() : nlohmann::json(origin)}};
 }
 
 }  // namespace
 
 int passesCommand(const PassesOptions& o) {
     const auto& registry = graph::passRegistry();
-    std::vector<std::string> types = registry.types();
+    std::vector<std::string> types;
+    for (const auto& t : registry.types())
+        if (!o.pluginsOnly || !registry.origin(t).empty()) types.push_back(t);
+    if (o.pluginsOnly && types.empty())
+        throw InputError("fovea passes", "--plugins-only",
+                         "no plugin is loaded (give --plugin LIB.so or set FOVEA_PLUGIN_PATH)");
     if (!o.type.empty()) {
         if (!registry.find(o.type))
             throw InputError("fovea passes", "",
@@ -81,7 +89,7 @@ int passesCommand(const PassesOptions& o) {
         types = {o.type};
     }
     nlohmann::json all = nlohmann::json::array();
-    for (const auto& t : types) all.push_back(describePass(*registry.find(t)));
+    for (const auto& t : types) all.push_back(describePass(*registry.find(t), registry.origin(t)));
     if (!o.updateDocs.empty() || !o.checkDocs.empty()) {
         const bool write = !o.updateDocs.empty();
         const auto problems = syncPassDocs(write ? o.updateDocs : o.checkDocs, all, write);
@@ -103,7 +111,10 @@ int passesCommand(const PassesOptions& o) {
         return kExitOk;
     }
     for (const auto& p : all) {
-        std::cout << p["type"].get<std::string>() << " — " << p["doc"].get<std::string>() << "\n";
+        std::cout << p["type"].get<std::string>() << " — " << p["doc"].get<std::string>()
+                  << (p["plugin"].is_string() ? "  (plugin " + p["plugin"].get<std::string>() + ")"
+                                              : "")
+                  << "\n";
         for (const auto& f : p["fields"])
             std::cout << "    " << f["kind"].get<std::string>() << " "
                       << f["name"].get<std::string>() << "  [" << f["format"].get<std::string>()

@@ -16,7 +16,8 @@ void instantiatePasses(const GraphDesc& desc, const PassRegistry& registry, Comp
             throw InputError(desc.file, p.pointer + "/type",
                              "unknown pass type '" + p.type + "'" +
                                  didYouMean(p.type, registry.types()) +
-                                 " (run 'fovea passes' for the list)");
+                                 " (run 'fovea passes' for the list; a plugin's type needs "
+                                 "--plugin LIB.so or FOVEA_PLUGIN_PATH)");
         PassNode node;
         node.name = p.name;
         node.type = p.type;

@@ -4,20 +4,28 @@
 
 namespace fovea::graph {
 
-void PassRegistry::add(PassTypeInfo info) {
+void PassRegistry::add(PassTypeInfo info, std::string origin) {
+    if (info.type.empty() || !info.create)
+        throw std::logic_error("pass type registered without a name or a factory");
     std::string type = info.type;
-    mTypes[type] = std::move(info);
+    if (mTypes.count(type)) throw std::logic_error("pass type '" + type + "' registered twice");
+    mTypes.emplace(type, Entry{std::move(info), std::move(origin)});
 }
 
 const PassTypeInfo* PassRegistry::find(const std::string& type) const {
     auto it = mTypes.find(type);
-    return it == mTypes.end() ? nullptr : &it->second;
+    return it == mTypes.end() ? nullptr : &it->second.info;
 }
 
 std::vector<std::string> PassRegistry::types() const {
     std::vector<std::string> out;
-    for (const auto& [type, info] : mTypes) out.push_back(type);
+    for (const auto& [type, entry] : mTypes) out.push_back(type);
     return out;
+}
+
+std::string PassRegistry::origin(const std::string& type) const {
+    auto it = mTypes.find(type);
+    return it == mTypes.end() ? std::string() : it->second.origin;
 }
 
 std::unique_ptr<Pass> PassRegistry::create(const std::string& type, const std::string& name) const {

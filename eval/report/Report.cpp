@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/graph/PassRegistry.h"
+
 namespace fovea::eval {
 
 Stats computeStats(std::vector<double> values) {
@@ -43,6 +45,10 @@ nlohmann::json buildReport(const graph::RenderGraph& graph, const ReportInputs& 
             json statistics = graph.passStatistics(n);
             if (!statistics.is_null()) p["statistics"] = statistics;
         }
+        // A type from a pass plugin names its library (docs/plugins.md).
+        // (fovea runs graphs on the global registry: eval/run/GraphRunner.cpp.)
+        if (std::string origin = graph::passRegistry().origin(node.type); !origin.empty())
+            p["plugin"] = origin;
         passes.push_back(p);
     }
     nlohmann::json report = {

@@ -11,7 +11,7 @@ void InvertPass::reflect(fovea::graph::Reflection& r) const {
 
 void InvertPass::compile(fovea::graph::CompileContext& ctx) {
     // An absolute path: the pass's shader lives beside it, not in fovea's shader folder.
-    mPipeline = ctx.createPipeline(EXAMPLE_SHADER_DIR "/invert/invert.comp");
+    mPipeline = ctx.createPipeline((mShaderDir / "invert" / "invert.comp").string());
 }
 
 void InvertPass::execute(fovea::graph::ExecuteContext& ctx) {

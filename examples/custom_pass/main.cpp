@@ -17,7 +17,7 @@ int main() {
     setenv("FOVEA_SHADER_DIR", FOVEA_INSTALLED_SHADER_DIR, 0);
     registerBuiltinPasses();
     graph::passRegistry().add({"Invert", "white - color (examples/custom_pass)",
-                               [] { return std::make_unique<InvertPass>(); }});
+                               [] { return std::make_unique<InvertPass>(EXAMPLE_SHADER_DIR); }});
 
     graph::GraphDesc desc;
     desc.name = "custom pass example";

@@ -64,7 +64,8 @@ if unshare -m true 2> /dev/null; then
 else
   echo "NOTE: no private mount namespace here (unshare -m); the source-tree-hidden case is skipped"
 fi
-# An application against the installed package (find_package(fovea)), with a pass of its own.
+# An application against the installed package (find_package(fovea)), with a pass of its own,
+# and that pass as a plugin of the installed executable (docs/plugins.md).
 if [[ ${FOVEA_INSTALL_TEST_EXAMPLE:-1} == 1 ]]; then
   for f in "$tmp/prefix/lib/cmake/fovea/foveaConfig.cmake" "$tmp/prefix/include/fovea/core/graph/Pass.h" \
            "$tmp/prefix/lib/libfovea_core.a"; do
@@ -79,5 +80,11 @@ if [[ ${FOVEA_INSTALL_TEST_EXAMPLE:-1} == 1 ]]; then
   cmake --build "$tmp/example" >> "$tmp/example.log" 2>&1 ||
     { tail -40 "$tmp/example.log"; fail "examples/custom_pass does not build against the install"; }
   "$tmp/example/custom_pass" || fail "examples/custom_pass failed"
+  # The same pass as a plugin of the installed (stripped) fovea: its symbols are still exported.
+  "$fovea" run "$src/examples/custom_pass/invert.json" --plugin "$tmp/example/fovea_invert.so" \
+    --out "$tmp/plugin" --quiet || fail "the installed fovea could not run the example's plugin"
+  grep -q "\"plugin\": \"$tmp/example/fovea_invert.so\"" "$tmp/plugin/report.json" ||
+    fail "report.json does not name the plugin: $(grep -c plugin "$tmp/plugin/report.json")"
+  echo "ran examples/custom_pass/invert.json with the plugin built against the install"
 fi
 echo "PASS"
