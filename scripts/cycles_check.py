@@ -43,6 +43,11 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import cycles_scenes  # noqa: E402
+import shutil  # noqa: E402
+
+# oiiotool (Debian's openimageio-tools) reads the images; fovea itself no longer needs it.
+if shutil.which("oiiotool") is None:
+    sys.exit("%s: needs oiiotool: apt-get install openimageio-tools" % os.path.basename(__file__))
 
 HDRI_DIR = "/usr/share/blender/datafiles/studiolights/world"
 GRID = 4

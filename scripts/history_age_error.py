@@ -18,6 +18,11 @@ import os
 import subprocess
 import sys
 import tempfile
+import shutil  # noqa: E402
+
+# oiiotool (Debian's openimageio-tools) reads the images; fovea itself no longer needs it.
+if shutil.which("oiiotool") is None:
+    sys.exit("%s: needs oiiotool: apt-get install openimageio-tools" % os.path.basename(__file__))
 
 
 def read_pixels(path):

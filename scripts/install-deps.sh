@@ -6,7 +6,7 @@ PACKAGES=(
   build-essential cmake pkg-config ninja-build clang-format
   libvulkan-dev vulkan-tools mesa-vulkan-drivers vulkan-validationlayers
   glslang-dev glslang-tools spirv-tools libspirv-cross-c-shared-dev spirv-cross
-  libglm-dev libglfw3-dev libtinygltf-dev libstb-dev libembree-dev libopenimageio-dev openimageio-tools
+  libglm-dev libglfw3-dev libtinygltf-dev libstb-dev libembree-dev libopenexr-dev
   nlohmann-json3-dev libcli11-dev libimgui-dev libgtest-dev libgmock-dev libeigen3-dev
   xvfb xauth
   # The sanitizer and fuzzing tree (make sanitize-ci, make fuzz): clang with libFuzzer's runtime

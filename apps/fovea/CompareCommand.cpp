@@ -20,7 +20,8 @@ void addCompareCommand(CLI::App& app, CompareOptions& o) {
     auto* cmd = app.add_subcommand(
         "compare",
         "error metrics of an image against a reference (RMSE, relMSE, PSNR, SSIM, ꟻLIP, ...)");
-    cmd->add_option("test", o.test, "image to evaluate (EXR or any format OpenImageIO reads)")
+    cmd->add_option("test", o.test,
+                    "image to evaluate (EXR, or PNG, JPEG, HDR, ...: core/image/ImageIO.h)")
         ->required()
         ->check(userPath());
     cmd->add_option("reference", o.reference, "reference image of the same size")

@@ -1,4 +1,6 @@
-// Image files through OpenImageIO: linear float EXR for data, tone-mapped sRGB PNG for eyes.
+// Image files: linear float EXR for data, tone-mapped sRGB PNG for eyes. EXR through OpenEXR,
+// the other formats through stb_image (core/image/ImageCodecs.h); the decoder follows the file's
+// content, not its name.
 #pragma once
 #include <cstdint>
 #include <filesystem>
@@ -36,8 +38,9 @@ struct ImageSize {
 // caller can refuse a wrong size before paying for the decode. InputError as readImage.
 ImageSize readImageSize(const std::filesystem::path& path);
 
-// Reads any format OIIO knows as RGBA float (missing channels: 0, alpha 1), alpha as stored
-// (a PNG's colour is not premultiplied by its alpha).
+// Reads EXR, PNG, JPEG, Radiance HDR, TGA, BMP, PSD, GIF or PNM as RGBA float: channels R, G, B
+// (missing ones 0) and A (missing: 1); a grey image's Y replicated; else the first channels.
+// 8/16-bit values k read as k/255, k/65535; alpha as stored (colour is not premultiplied).
 // Throws InputError naming the file when it cannot be read, or when the image has more pixels
 // than `maxPixels` (0: kMaxImagePixels; checked on the header, before any pixel is allocated).
 ImageRGBA readImage(const std::filesystem::path& path, uint64_t maxPixels = 0);

@@ -63,7 +63,7 @@ EnvironmentMap loadEnvironment(const std::filesystem::path& path, float intensit
     std::error_code ec;
     if (std::filesystem::file_size(path, ec) == 0)
         throw InputError(file, "", "environment map is an empty file");
-    // readImage: InputError naming the file for anything OpenImageIO cannot read or decode, and
+    // readImage: InputError naming the file for anything it cannot read or decode, and
     // for more than kMaxEnvironmentPixels before any pixel is allocated.
     const image::ImageRGBA image = image::readImage(path, kMaxEnvironmentPixels);
 

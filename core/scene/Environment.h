@@ -43,9 +43,9 @@ struct EnvironmentMap {
     float rotation = 0.0f;            // radians about +Y (see the header comment)
 };
 
-// Reads an equirectangular EXR or Radiance .hdr (anything OpenImageIO reads; other formats are
-// read as linear values, with a warning) and scales it by `intensity`. InputError naming the file
-// for: a missing, unreadable or empty file, a NaN or infinite texel (names the first one);
+// Reads an equirectangular EXR or Radiance .hdr (or any format core/image/ImageIO.h reads; others
+// are read as linear values, with a warning) and scales it by `intensity`. InputError naming the
+// file for: a missing, unreadable or empty file, a NaN or infinite texel (names the first one);
 // naming the option for a non-finite or negative intensity or a non-finite rotation. Appends to
 // `warnings` (the picture is still defined) when the aspect is not 2:1 (the image is stretched
 // over the sphere as it is), when negative texels were clamped to 0 (lossy EXRs hold tiny ones),

@@ -1,5 +1,5 @@
 // `fovea bench`: the bench file (docs/bench.md), the measured results of each graph, and the
-// files written from them (bench.json, bench.csv, bench.md, bench.svg, bench.png).
+// files written from them (bench.json, bench.csv, bench.md, bench.svg).
 #pragma once
 #include <cstdint>
 #include <filesystem>
@@ -146,8 +146,5 @@ void writeBenchTables(const OutputFolder& folder, const nlohmann::json& header,
                       const std::vector<BenchResult>& results);
 // The run-time-vs-error plot as SVG text (BenchPlot.cpp).
 std::string benchPlotSvg(const std::vector<BenchResult>& results, const std::string& title);
-// Rasterizes an SVG file to PNG through OpenImageIO; false (and why) when it cannot.
-bool rasterizeSvg(const std::filesystem::path& svg, const std::filesystem::path& png,
-                  std::string& why);
 
 }  // namespace fovea::eval

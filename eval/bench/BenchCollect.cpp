@@ -166,17 +166,6 @@ void collectBench(const BenchSpec& spec, const std::vector<json>& results,
     const fs::path& dir = folder.path();
     const std::string deviceName = firstRun.at("device").at("name").get<std::string>();
     folder.writeText("bench.svg", benchPlotSvg(benchResults, spec.name + " — " + deviceName));
-    std::string why;
-    bool rasterized = true;
-    try {
-        folder.write("bench.png", [&](const fs::path& path) {
-            rasterized = rasterizeSvg(dir / "bench.svg", path, why);
-            if (!rasterized) throw RuntimeError(why);  // removes the temporary file
-        });
-    } catch (const RuntimeError&) {
-        if (rasterized) throw;  // the rename failed: a write error like any other
-        if (!quiet) std::cerr << "fovea: bench.png not written: " << why << "\n";
-    }
     writeBenchTables(folder, header, benchResults);
     if (!quiet) std::cerr << "fovea: wrote " << (dir / "bench.md").string() << "\n";
 }

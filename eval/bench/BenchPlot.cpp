@@ -1,7 +1,6 @@
 // The `fovea bench` plot: GPU frame time (x, ms) against error (y, RMSE %), one labelled point
-// per graph, written as hand-made SVG (no plotting dependency), and its PNG through OpenImageIO.
+// per graph, written as hand-made SVG (no plotting dependency; any browser shows it).
 // Both axes start at 0 so distances between points read as ratios.
-#include <OpenImageIO/imagebuf.h>
 
 #include <algorithm>
 #include <cmath>
@@ -187,20 +186,6 @@ std::string benchPlotSvg(const std::vector<BenchResult>& results, const std::str
     }
     s << "</svg>\n";
     return s.str();
-}
-
-bool rasterizeSvg(const std::filesystem::path& svg, const std::filesystem::path& png,
-                  std::string& why) {
-    OIIO::ImageBuf in(svg.string());
-    if (!in.read(0, 0, true, OIIO::TypeDesc::UINT8)) {
-        why = "OpenImageIO cannot read SVG here (" + in.geterror() + ")";
-        return false;
-    }
-    if (!in.write(png.string())) {
-        why = "OpenImageIO cannot write '" + png.string() + "' (" + in.geterror() + ")";
-        return false;
-    }
-    return true;
 }
 
 }  // namespace fovea::eval

@@ -56,7 +56,7 @@ std::optional<LayerRadii> benchLayerRadii(const BenchSpec& spec);
 nlohmann::json runBenchItem(const BenchSpec& spec, const BenchItem& item,
                             const std::filesystem::path& dir, gpu::Context& ctx, bool quiet);
 
-// Writes bench.svg, bench.png, bench.csv, bench.md and bench.json (last) into `folder` from the
+// Writes bench.svg, bench.csv, bench.md and bench.json (last) into `folder` from the
 // results of every item of benchPlan(spec), in plan order. Throws InputError when a result belongs
 // to another bench (benchKey) or is not the item's.
 void collectBench(const BenchSpec& spec, const std::vector<nlohmann::json>& results,

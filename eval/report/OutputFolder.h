@@ -6,8 +6,8 @@
 //   checkOutputDir is checked again under the lock: two runs started together on one --out
 //   cannot both pass it. With --overwrite, a previous report (report.json of `run`, bench.json
 //   of `bench`) is removed first, so the old report never sits beside new images.
-// - Writing: every file goes to `.partial.<name>` (same folder, same extension, so OpenImageIO
-//   picks the format) and is renamed when complete; every write is checked (a full disk is a
+// - Writing: every file goes to `.partial.<name>` (same folder, same extension, so a viewer
+//   still knows the format) and is renamed when complete; every write is checked (a full disk is a
 //   RuntimeError naming the file, exit 1). The report is written last, with "finished".
 #pragma once
 #include <filesystem>

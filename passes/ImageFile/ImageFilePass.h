@@ -1,4 +1,4 @@
-// ImageFile: the user's own images as a graph input — one EXR/PNG (any format OpenImageIO reads)
+// ImageFile: the user's own images as a graph input — one EXR/PNG (or JPEG, HDR, TGA, BMP, ...)
 // or a numbered sequence (`frame%04d.exr`, frame = firstFrame + frame index), with channel
 // selection for multi-layer EXRs (AOVs: colour, albedo, normal, depth, motion). The file must
 // have the render size; a missing or wrong-size file is an InputError naming it (exit 2). The

@@ -1,7 +1,7 @@
 // Image files a user names (ImageFile pass, --reference, compare): the header check
 // (readImageSize), then the decode into RGBA float with the pixel cap, and channel selection.
-// The name's extension follows the input's magic bytes (OpenImageIO picks its reader by
-// extension first): PNG, OpenEXR, Radiance HDR, JPEG; anything else is tried as a .png.
+// The name's extension follows the input's magic bytes (fovea picks the decoder by content, but
+// the saved inputs read better so): PNG, OpenEXR, Radiance HDR, JPEG; anything else is a .png.
 #include <cstring>
 
 #include "core/image/ImageIO.h"

@@ -394,8 +394,9 @@ TEST(CliInputRobustness, NonRegularFilesAreRefusedNotRead) {
 
 TEST(CliRunRobustness, AFullDiskNamesTheImageAndLeavesNoPartOfIt) {
     // Issue 33, class 3: the PNG write goes to a link to /dev/full (ENOSPC on every write).
-    // OpenImageIO's own output reported success and a 0-byte PNG took the final name; now the
-    // run exits 1 naming the final file, and neither it nor its partial file remains.
+    // OpenImageIO's own output (fovea's image library then) reported success and a 0-byte PNG took
+    // the final name; now the run exits 1 naming the final file, and neither it nor its partial
+    // file remains.
     TempDir tmp;
     const fs::path out = tmp / "out";
     fs::create_directories(out);

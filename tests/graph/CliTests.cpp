@@ -77,9 +77,8 @@ TEST(CliRun, DemoWritesReportAndImages) {
     EXPECT_GT(byName["acc"]["gpu_ms"]["max"].get<double>(), 0.0);
 
     const json& memory = report.at("memory");
-    for (const char* key :
-         {"transient_bytes", "transient_bytes_without_aliasing", "persistent_bytes",
-          "history_bytes"}) {
+    for (const char* key : {"transient_bytes", "transient_bytes_without_aliasing",
+                            "persistent_bytes", "history_bytes"}) {
         ASSERT_TRUE(memory.contains(key) && memory[key].is_number_unsigned()) << key << memory;
     }
     EXPECT_LE(memory["history_bytes"].get<uint64_t>(), memory["persistent_bytes"].get<uint64_t>());
@@ -163,7 +162,7 @@ TEST(CliRun, SetOverridesAreApplied) {
 }
 
 // Same graph, same seed => bit-identical images; another seed => different noise. (Pixels are
-// compared, not files: OIIO stores the write time in the EXR header.)
+// compared, not files: an encoder may store a write time in a header.)
 TEST(CliRun, SameSeedIsBitIdentical) {
     TempDir tmp;
     Result a = runSmall(kDemo, tmp / "a", {"--seed", "7"});

@@ -1,11 +1,11 @@
 // PNG writing (core/image/ImageIO): 8-bit UNORM images (already display-encoded, e.g. Tonemap's
 // `ldr`) are written as-is, not sRGB-encoded a second time; linear float images are encoded once
 // and alpha stays linear. CPU only.
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -37,17 +37,15 @@ fs::path tempFile(const std::string& name) {
     return fs::temp_directory_path() / ("fovea_png_" + std::to_string(::getpid()) + "_" + name);
 }
 
+// The bytes as stored: fovea's reader (stb_image, a decoder apart from stb_image_write's
+// encoder) gives 8-bit k as k/255 with no premultiplication by alpha or colour conversion.
 std::vector<uint8_t> readPngBytes(const fs::path& path, int& width, int& height) {
-    OIIO::ImageSpec config;  // the bytes as stored: no premultiplication by alpha
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    auto in = OIIO::ImageInput::open(path.string(), &config);
-    if (!in) return {};
-    const OIIO::ImageSpec& spec = in->spec();
-    width = spec.width;
-    height = spec.height;
-    EXPECT_EQ(spec.nchannels, 4);
-    std::vector<uint8_t> bytes(size_t(spec.width) * spec.height * 4);
-    EXPECT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, bytes.data()));
+    const image::ImageRGBA img = image::readImage(path);
+    width = int(img.width);
+    height = int(img.height);
+    std::vector<uint8_t> bytes(img.pixels.size());
+    for (size_t i = 0; i < bytes.size(); ++i)
+        bytes[i] = uint8_t(std::lround(img.pixels[i] * 255.0f));
     return bytes;
 }
 

@@ -2,7 +2,6 @@
 // formats their shaders cannot read or write are rejected at compile, naming pass and field or
 // parameter; bypass pairs of different size or format are rejected by the compile stages (so
 // `fovea validate` agrees with `fovea run`); parameter docs say what the code does. CPU only.
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
