@@ -1,5 +1,5 @@
-// RecurrentBlur: the ReBLUR diffuse denoiser of seed 004 (the ReBLUR talk; notes, NRD defaults
-// and oracles in ../shared/design/denoiser-specs.md §2) as two stages of one pass type, so that
+// RecurrentBlur: the ReBLUR diffuse denoiser of seed 004 (the ReBLUR talk, docs/references.md;
+// NRD defaults and oracles in docs/passes/RecurrentBlur.md) as two stages of one pass type, so that
 // HistoryFix (a separate pass) can sit between them and the recurrence is an edge of the graph:
 //
 //   rbt: RecurrentBlur{stage: temporal}  pre-blur -> temporal accumulation (+ firefly suppressor)

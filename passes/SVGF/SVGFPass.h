@@ -1,5 +1,5 @@
-// SVGF: Spatiotemporal Variance-Guided Filtering (Schied et al., HPG 2017; notes in
-// ../shared/design/denoiser-specs.md §1). Temporal accumulation of the demodulated colour and of
+// SVGF: Spatiotemporal Variance-Guided Filtering (Schied et al., HPG 2017; docs/references.md,
+// docs/passes/SVGF.md). Temporal accumulation of the demodulated colour and of
 // the luminance moments with per-tap disocclusion tests (§4.1), a variance estimate that falls
 // back to a spatial one while the history is short (§4.2), `iterations` a-trous levels with
 // variance-guided luminance, normal and depth-gradient edge stopping (§4.3-4.4), the output of

@@ -1,5 +1,5 @@
-// Shared helpers of the RecurrentBlur stages (seed 004, the ReBLUR talk; notes and NRD defaults in
-// ../shared/design/denoiser-specs.md §2). Every stage keeps its taps inside the pixel's eye.
+// Shared helpers of the RecurrentBlur stages (seed 004, the ReBLUR talk; NRD defaults in
+// docs/passes/RecurrentBlur.md). Every stage keeps its taps inside the pixel's eye.
 #ifndef FOVEA_REBLUR_COMMON_GLSL
 #define FOVEA_REBLUR_COMMON_GLSL
 

@@ -1,5 +1,5 @@
 // Shared by the SVGF kernels (Schied et al. 2017, "Spatiotemporal Variance-Guided Filtering";
-// notes in ../shared/design/denoiser-specs.md §1): guarded reads of the G-buffer, the depth
+// docs/references.md, docs/passes/SVGF.md): guarded reads of the G-buffer, the depth
 // gradient and the edge-stopping weights (paper §4.4). Every read is clamped to the image (an
 // out-of-bounds imageLoad is undefined in Vulkan, specs §1 F7).
 #ifndef FOVEA_SVGF_COMMON_GLSL
