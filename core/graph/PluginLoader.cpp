@@ -98,6 +98,8 @@ PassRegistry registerFromPlugin(const fs::path& path) {
         registerPasses(context);
     } catch (const std::exception& e) {
         throw InputError(file, "", std::string("plugin registration failed: ") + e.what());
+    } catch (...) {  // a plugin may throw anything; fovea never ends in std::terminate
+        throw InputError(file, "", "plugin registration failed: a non-standard exception");
     }
     if (staging.types().empty()) throw InputError(file, "", "plugin registers no pass type");
     return staging;
