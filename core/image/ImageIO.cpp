@@ -99,14 +99,15 @@ ImageRGBA readImageChannels(const std::filesystem::path& path,
     if (channels.empty()) return readImage(path);
     if (channels.size() > 4)
         throw InputError(path.string(), "", "at most 4 channels can be selected");
-    // Names are checked on the header, before the pixels are decoded.
-    const codec::Decoded header = decodeFile(path, false, 0);
+    // One open and decode (ImageFile reads a file per frame); the pixel cap is checked on the
+    // header inside the decode, and a wrong name only costs a decode on the way to its error.
+    const codec::Decoded decoded = decodeFile(path, true, 0);
     std::vector<int> index;
     for (const std::string& name : channels) {
-        const int found = indexOf(header, name);
+        const int found = indexOf(decoded, name);
         if (found < 0) {
             std::string list;
-            for (const auto& n : header.channels) list += (list.empty() ? "" : ", ") + n;
+            for (const auto& n : decoded.channels) list += (list.empty() ? "" : ", ") + n;
             throw InputError(path.string(), "",
                              "no channel '" + name + "' (channels: " + list + ")");
         }
@@ -114,7 +115,7 @@ ImageRGBA readImageChannels(const std::filesystem::path& path,
     }
     if (index.size() == 1) index = {index[0], index[0], index[0], -1};  // one channel: grey
     index.resize(4, -1);
-    return gather(decodeFile(path, true, 0), index);
+    return gather(decoded, index);
 }
 
 }  // namespace fovea::image

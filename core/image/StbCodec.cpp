@@ -7,6 +7,7 @@
 
 #include "core/image/ImageCodecs.h"
 #include "core/util/Error.h"
+#include "core/util/UserFile.h"
 
 // Compiled here with static linkage, like core/scene/GltfTextures.cpp's copy, so no other
 // library's stb can clash with it.
@@ -49,14 +50,10 @@ std::vector<std::string> channelNames(int components) {
 // A PNG's size and channel count from its IHDR chunk (signature, length, "IHDR", width, height,
 // bit depth, colour type; big-endian). stb refuses a PNG of 2^30 bytes of pixels or more already
 // in stbi_info, so that its size could not be reported or compared before the decode refuses it.
-bool pngHeader(const std::filesystem::path& path, uint64_t& width, uint64_t& height,
+bool pngHeader(const unsigned char* b, size_t size, uint64_t& width, uint64_t& height,
                int& components) {
-    unsigned char b[26] = {};
-    FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) return false;
-    const bool read = std::fread(b, 1, sizeof b, f) == sizeof b;
-    std::fclose(f);
-    if (!read || std::memcmp(b, "\x89PNG\r\n\x1a\n", 8) != 0 || std::memcmp(b + 12, "IHDR", 4) != 0)
+    if (size < 26 || std::memcmp(b, "\x89PNG\r\n\x1a\n", 8) != 0 ||
+        std::memcmp(b + 12, "IHDR", 4) != 0)
         return false;
     auto be32 = [&](int at) {
         return uint64_t(b[at]) << 24 | uint64_t(b[at + 1]) << 16 | uint64_t(b[at + 2]) << 8 |
@@ -69,14 +66,15 @@ bool pngHeader(const std::filesystem::path& path, uint64_t& width, uint64_t& hei
     return width > 0 && height > 0 && components > 0;
 }
 
-// stb opens the file itself (fopen): the caller has checked it is a regular file.
-Decoded probe(const std::filesystem::path& path) {
-    int w = 0, h = 0, components = 0;
-    if (!stbi_info(path.c_str(), &w, &h, &components)) {
+// The header stbi_info found (`known`), or, when it refused the file, the size of a PNG too large
+// for stb from its IHDR (`head`: the file's first bytes); else an InputError naming the file.
+Decoded header(const std::filesystem::path& path, bool known, int w, int h, int components,
+               const unsigned char* head, size_t headSize) {
+    if (!known) {
         const std::string why = reason();
         uint64_t pngWidth = 0, pngHeight = 0;
         int pngComponents = 0;
-        if (pngHeader(path, pngWidth, pngHeight, pngComponents) &&
+        if (pngHeader(head, headSize, pngWidth, pngHeight, pngComponents) &&
             pngWidth * pngHeight * uint64_t(pngComponents) >= (uint64_t(1) << 30) &&
             pngWidth <= UINT32_MAX && pngHeight <= UINT32_MAX) {
             // Too large for stb, not damaged: its size, for the callers' size checks and the
@@ -117,25 +115,44 @@ void convert(const std::filesystem::path& path, const Decoded& expected, T* data
 
 }  // namespace
 
+// The header only: stb reads as little of the file as it needs (the caller has checked it is a
+// regular file).
 Decoded probeStb(const std::filesystem::path& path) {
-    return probe(path);
+    int w = 0, h = 0, components = 0;
+    const bool known = stbi_info(path.c_str(), &w, &h, &components);
+    unsigned char head[26] = {};
+    size_t headSize = 0;
+    if (!known) {
+        if (FILE* f = std::fopen(path.c_str(), "rb")) {
+            headSize = std::fread(head, 1, sizeof head, f);
+            std::fclose(f);
+        }
+    }
+    return header(path, known, w, h, components, head, headSize);
 }
 
+// The file is read once; header, format and pixels all come from those bytes.
 Decoded decodeStb(const std::filesystem::path& path, uint64_t maxPixels) {
-    Decoded d = probe(path);
-    checkPixelCount(path, d.width, d.height, maxPixels);
+    std::vector<uint8_t> bytes;
+    std::string error;
+    if (!readRegularFile(path, uint64_t(INT32_MAX), bytes, error))
+        throw InputError(path.string(), "", "cannot read image: " + error);
+    const stbi_uc* data = bytes.data();
+    const int size = int(bytes.size());  // <= INT32_MAX: readRegularFile's limit
     int w = 0, h = 0, components = 0;
-    const char* file = path.c_str();
+    const bool known = stbi_info_from_memory(data, size, &w, &h, &components);
+    Decoded d = header(path, known, w, h, components, data, bytes.size());
+    checkPixelCount(path, d.width, d.height, maxPixels);
     // Decoded first, then converted: the sizes are outputs of the load.
-    if (stbi_is_hdr(file)) {
-        float* data = stbi_loadf(file, &w, &h, &components, 0);
-        convert(path, d, data, w, h, components, 1.0f, d);
-    } else if (stbi_is_16_bit(file)) {
-        stbi_us* data = stbi_load_16(file, &w, &h, &components, 0);
-        convert(path, d, data, w, h, components, 65535.0f, d);
+    if (stbi_is_hdr_from_memory(data, size)) {
+        float* pixels = stbi_loadf_from_memory(data, size, &w, &h, &components, 0);
+        convert(path, d, pixels, w, h, components, 1.0f, d);
+    } else if (stbi_is_16_bit_from_memory(data, size)) {
+        stbi_us* pixels = stbi_load_16_from_memory(data, size, &w, &h, &components, 0);
+        convert(path, d, pixels, w, h, components, 65535.0f, d);
     } else {
-        stbi_uc* data = stbi_load(file, &w, &h, &components, 0);
-        convert(path, d, data, w, h, components, 255.0f, d);
+        stbi_uc* pixels = stbi_load_from_memory(data, size, &w, &h, &components, 0);
+        convert(path, d, pixels, w, h, components, 255.0f, d);
     }
     return d;
 }
