@@ -33,15 +33,38 @@ void instantiatePasses(const GraphDesc& desc, const PassRegistry& registry, Comp
     }
 }
 
+namespace {
+
+// A pass author's mistakes in a field declaration (logic_error: not the graph file's fault).
+void checkFieldDesc(const PassNode& node, const FieldDesc& f) {
+    auto fail = [&](const std::string& what) {
+        throw std::logic_error("pass type " + node.type + ": field '" + f.name + "' " + what);
+    };
+    const bool ownBuffer = f.kind != FieldKind::Input && !f.isImage();
+    if (f.historyFrames > 0 && (f.kind == FieldKind::Input || !f.isImage()))
+        fail("declares history but is not an output/internal image");
+    if ((f.indirect || f.hostVisible || f.init != BufferInit::Undefined || !f.sizeOf.empty()) &&
+        !ownBuffer)
+        fail("asks for buffer usage or initial content but is not an output/internal buffer");
+    if (f.init == BufferInit::Contents && (!f.contents || f.contentsBytes != f.buffer.bytes(1, 1) ||
+                                           f.buffer.perPixel != 0 || f.buffer.perBlock != 0))
+        fail("has contents whose size is not its fixed buffer size");
+    if (f.hostVisible && f.indirect) fail("is both host-visible and indirect");
+    if (!f.sizeOf.empty()) {
+        const FieldDesc* in = node.reflection.find(f.sizeOf);
+        if (!in || in->kind != FieldKind::Input || !in->isImage())
+            fail("is sized by '" + f.sizeOf + "', which is not an image input");
+    }
+}
+
+}  // namespace
+
 void reflectPasses(CompiledPlan& plan) {
     for (auto& node : plan.nodes) {
         node.reflection = Reflection();
         node.pass->reflect(node.reflection);
         // A pass author's mistakes, caught the first time the pass type is compiled.
-        for (const auto& f : node.reflection.fields())
-            if (f.historyFrames > 0 && (f.kind == FieldKind::Input || !f.isImage()))
-                throw std::logic_error("pass type " + node.type + ": field '" + f.name +
-                                       "' declares history but is not an output/internal image");
+        for (const auto& f : node.reflection.fields()) checkFieldDesc(node, f);
     }
 }
 

@@ -98,7 +98,12 @@ void resolveResources(CompiledPlan& plan) {
             r.field = f.name;
             r.isImage = f.isImage();
             r.format = f.format;
-            r.bufferBytes = f.isImage() ? 0 : f.buffer.bytes(plan.options.width, plan.options.height);
+            r.bufferBytes =
+                f.isImage() ? 0 : f.buffer.bytes(plan.options.width, plan.options.height);
+            r.indirect = f.indirect;
+            r.hostVisible = f.hostVisible;
+            r.init = f.init;
+            r.contents = f.contents;
             r.firstUse = r.lastUse = pos;
             if (f.persistent || plan.nodes[n].pass->cacheable()) r.lifetime = Lifetime::Persistent;
             if (f.historyFrames > 0) {  // images only (checked by reflectPasses)
@@ -123,6 +128,17 @@ void resolveResources(CompiledPlan& plan) {
             throw InputError(plan.file, "/edges",
                              "cannot resolve the size of '" + r.name +
                                  "': its same-as-input chain loops through delayed edges");
+
+    // Buffers sized by an input's image (FieldDesc::sizeOf); an open input means the screen.
+    for (auto& r : plan.resources) {
+        const FieldDesc& f = *plan.nodes[r.producer].reflection.find(r.field);
+        if (r.isImage || f.sizeOf.empty()) continue;
+        auto in = plan.inputs.find({r.producer, f.sizeOf});
+        if (in == plan.inputs.end()) continue;
+        const ResourcePlan& source =
+            plan.resources[plan.resourceOf.at({in->second.node, in->second.field})];
+        if (source.isImage) r.bufferBytes = f.buffer.bytes(source.width, source.height);
+    }
 
     // Connect inputs, check their size rules, extend lifetimes, mark history rings.
     for (auto& [key, src] : plan.inputs) {

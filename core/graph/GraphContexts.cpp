@@ -118,22 +118,37 @@ void GraphExecuteContext::bindFields(gpu::ComputePipeline& pipeline) {
             }
             continue;  // otherwise bound by the pass itself (checked at compile)
         }
-        bool isBuffer = b.kind == gpu::DescriptorKind::StorageBuffer ||
-                        b.kind == gpu::DescriptorKind::UniformBuffer;
-        if (f->kind == FieldKind::Input && !connected(f->name)) {
-            // Optional input left open: bind a 1x1 zero image (or a small zeroed buffer) so the
-            // shader's descriptor is valid; the pass decides from connected() whether to read it.
-            if (isBuffer)
-                pipeline.bind(b.name, mGraph.dummyBuffer());
-            else
-                pipeline.bind(b.name, mGraph.dummyImage(b.imageFormat));
-            continue;
-        }
-        if (isBuffer)
-            pipeline.bind(b.name, buffer(f->name));
-        else
-            pipeline.bind(b.name, image(f->name));
+        bindResource(pipeline, b, *f);
     }
+}
+
+void GraphExecuteContext::bindField(gpu::ComputePipeline& pipeline, const std::string& binding,
+                                    const std::string& field) {
+    const FieldDesc* f = mPlan.nodes[mNode].reflection.find(field);
+    if (!f)
+        throw RuntimeError("pass '" + mPlan.nodes[mNode].name + "' binds unknown field '" + field +
+                           "'");
+    for (const auto& b : pipeline.interface().bindings)
+        if (b.name == binding) return bindResource(pipeline, b, *f);
+}
+
+void GraphExecuteContext::bindResource(gpu::ComputePipeline& pipeline, const gpu::ShaderBinding& b,
+                                       const FieldDesc& f) {
+    bool isBuffer = b.kind == gpu::DescriptorKind::StorageBuffer ||
+                    b.kind == gpu::DescriptorKind::UniformBuffer;
+    if (f.kind == FieldKind::Input && !connected(f.name)) {
+        // Optional input left open: bind a 1x1 zero image (or a small zeroed buffer) so the
+        // shader's descriptor is valid; the pass decides from connected() whether to read it.
+        if (isBuffer)
+            pipeline.bind(b.name, mGraph.dummyBuffer());
+        else
+            pipeline.bind(b.name, mGraph.dummyImage(b.imageFormat));
+        return;
+    }
+    if (isBuffer)
+        pipeline.bind(b.name, buffer(f.name));
+    else
+        pipeline.bind(b.name, image(f.name));
 }
 
 }  // namespace fovea::graph

@@ -2,6 +2,7 @@
 #pragma once
 #include "core/graph/GraphPlan.h"
 #include "core/graph/Pass.h"
+#include "core/vk/ShaderReflection.h"
 
 namespace fovea::graph {
 
@@ -44,10 +45,14 @@ public:
     const gpu::Image& previous(const std::string& field, uint32_t framesBack) override;
     std::optional<uint64_t> inputVersion(const std::string& input) const override;
     void bindFields(gpu::ComputePipeline& pipeline) override;
+    void bindField(gpu::ComputePipeline& pipeline, const std::string& binding,
+                   const std::string& field) override;
     const scene::SceneGpu* scene() const override;
     const scene::FrameCamera& camera() const override;
 
 private:
+    void bindResource(gpu::ComputePipeline& pipeline, const gpu::ShaderBinding& binding,
+                      const FieldDesc& field);
     RenderGraph& mGraph;
     const CompiledPlan& mPlan;
     size_t mNode;

@@ -47,6 +47,12 @@ struct ResourcePlan {
     uint32_t width = 0, height = 0;
     vk::Format format = vk::Format::eUndefined;
     uint64_t bufferBytes = 0;
+    // Buffers (FieldDesc): indirect-argument usage, host-visible memory, what the graph writes
+    // into it before the pass sees it.
+    bool indirect = false;
+    bool hostVisible = false;
+    BufferInit init = BufferInit::Undefined;
+    const void* contents = nullptr;
     Lifetime lifetime = Lifetime::Transient;
     uint32_t ringSize = 1;  // history: max delay + 1
     // Previous frames the producing pass declared (FieldDesc::historyFrames); delay edges that

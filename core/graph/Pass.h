@@ -115,6 +115,11 @@ public:
     // Binds every shader resource whose name is a connected field of this pass, plus the scene
     // buffers (scene_*) and the frame camera (camera_info) when the shader declares them.
     virtual void bindFields(gpu::ComputePipeline& pipeline) = 0;
+    // Binds field `field` to the shader resource `binding`, for a resource whose name cannot be
+    // the field's (e.g. the GLSL keyword `layout`). An open optional input gets the zero dummy,
+    // as in bindFields.
+    virtual void bindField(gpu::ComputePipeline& pipeline, const std::string& binding,
+                           const std::string& field) = 0;
     // The scene (null without one) and this frame's camera (a default one without a scene).
     virtual const scene::SceneGpu* scene() const = 0;
     virtual const scene::FrameCamera& camera() const = 0;

@@ -39,6 +39,9 @@ nlohmann::json dumpPlanJson(const CompiledPlan& plan) {
             jr["format"] = gpu::formatName(r.format);
         } else {
             jr["buffer_bytes"] = r.bufferBytes;
+            jr["indirect"] = r.indirect;
+            jr["host_visible"] = r.hostVisible;
+            jr["init"] = bufferInitName(r.init);
         }
         resources.push_back(jr);
     }
@@ -91,7 +94,10 @@ std::string dumpPlanText(const CompiledPlan& plan) {
         if (r.isImage)
             s << r.width << "x" << r.height << " " << gpu::formatName(r.format);
         else
-            s << "buffer " << r.bufferBytes << " B";
+            s << "buffer " << r.bufferBytes << " B" << (r.indirect ? " indirect" : "")
+              << (r.hostVisible ? " host-visible" : "")
+              << (r.init != BufferInit::Undefined ? std::string(" init ") + bufferInitName(r.init)
+                                                  : std::string());
         s << "  " << lifetimeName(r.lifetime);
         if (r.ringSize > 1) s << " ring " << r.ringSize;
         if (r.declaredHistory > 0)

@@ -101,4 +101,18 @@ const char* sizeRuleName(SizeRule rule) {
     return "?";
 }
 
+const char* bufferInitName(BufferInit init) {
+    switch (init) {
+        case BufferInit::Undefined:
+            return "undefined";
+        case BufferInit::Zero:
+            return "zero";
+        case BufferInit::ZeroOnReset:
+            return "zero-on-reset";
+        case BufferInit::Contents:
+            return "contents";
+    }
+    return "?";
+}
+
 }  // namespace fovea::graph

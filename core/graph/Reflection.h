@@ -34,6 +34,17 @@ struct BufferSize {
     uint64_t bytes(uint32_t width, uint32_t height) const;
 };
 
+// What a buffer output/internal holds when the graph hands it to the pass. The graph writes it
+// (and orders the write before the pass), so no pass clears, uploads or allocates its own.
+enum class BufferInit {
+    Undefined,    // whatever the pass wrote last (after allocation: undefined)
+    Zero,         // zeros on the first frame after allocation (e.g. counters since compile)
+    ZeroOnReset,  // zeros on that frame and on every frame that starts a history (reset, resize,
+                  // camera cut): counters "since the last reset"
+    Contents,     // FieldDesc::contents, uploaded once when the buffer is allocated (constant
+                  // tables); the pass must not write it
+};
+
 struct FieldDesc {
     std::string name;
     FieldKind kind = FieldKind::Input;
@@ -52,6 +63,21 @@ struct FieldDesc {
     // Inputs: the shader reads it as float (sampler2D / image2D), so an integer-format image
     // (r32ui, ...) cannot be bound; the compiler rejects such an edge naming pass and field.
     bool floatOnly = false;
+    // Buffers: also usable as indirect dispatch arguments (vkCmdDispatchIndirect); the graph's
+    // barriers then cover the indirect-command read.
+    bool indirect = false;
+    // Buffers: in host-visible, mapped memory (gpu::Buffer::mapped), for data the pass writes
+    // from the CPU each frame (e.g. a staging copy of an image file). Frames are synchronous, so
+    // the previous frame's GPU reads are done when execute() writes it.
+    bool hostVisible = false;
+    BufferInit init = BufferInit::Undefined;
+    // BufferInit::Contents: the bytes, in storage that outlives every graph (a static table);
+    // their size must equal the buffer's.
+    const void* contents = nullptr;
+    uint64_t contentsBytes = 0;
+    // Buffers: size from the extent of input `sizeOf` instead of the render size (a per-block
+    // buffer of an image that may be smaller than the screen, e.g. a Visual-Polar buffer).
+    std::string sizeOf;
     std::string doc;
 
     bool isImage() const { return size != SizeRule::Buffer; }
@@ -104,12 +130,50 @@ public:
         mDesc.optional = true;
         return *this;
     }
+    // Undoes optional() of a shared declaration (core/graph/DenoiserInputs.h) for a pass that
+    // cannot run without the input.
+    FieldBuilder& required() {
+        mDesc.optional = false;
+        return *this;
+    }
     FieldBuilder& persistent() {
         mDesc.persistent = true;
         return *this;
     }
     FieldBuilder& floatOnly() {
         mDesc.floatOnly = true;
+        return *this;
+    }
+    FieldBuilder& indirect() {
+        mDesc.indirect = true;
+        return *this;
+    }
+    FieldBuilder& hostVisible() {
+        mDesc.hostVisible = true;
+        return *this;
+    }
+    // Buffers: zeros on the first frame after allocation (BufferInit::Zero).
+    FieldBuilder& zeroed() {
+        mDesc.init = BufferInit::Zero;
+        return *this;
+    }
+    // Buffers: zeros whenever a history starts (BufferInit::ZeroOnReset).
+    FieldBuilder& zeroOnReset() {
+        mDesc.init = BufferInit::ZeroOnReset;
+        return *this;
+    }
+    // Buffers: constant bytes uploaded when allocated (BufferInit::Contents); `data` must
+    // outlive the graph (static storage). The buffer is persistent.
+    FieldBuilder& contents(const void* data, uint64_t bytes) {
+        mDesc.init = BufferInit::Contents;
+        mDesc.contents = data;
+        mDesc.contentsBytes = bytes;
+        mDesc.persistent = true;
+        return *this;
+    }
+    // Buffers: per-pixel/per-block parts follow this input's extent, not the render size.
+    FieldBuilder& sizedBy(const std::string& input) {
+        mDesc.sizeOf = input;
         return *this;
     }
     FieldBuilder& doc(const std::string& text) {
@@ -148,5 +212,6 @@ std::pair<std::string, uint32_t> parsePreviousBindingName(const std::string& nam
 
 const char* fieldKindName(FieldKind kind);
 const char* sizeRuleName(SizeRule rule);
+const char* bufferInitName(BufferInit init);
 
 }  // namespace fovea::graph

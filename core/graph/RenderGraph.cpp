@@ -28,6 +28,13 @@ gpu::ImageDesc imageDesc(const ResourcePlan& r) {
     d.debugName = r.name;
     return d;
 }
+vk::BufferUsageFlags bufferUsage(const ResourcePlan& r) {
+    vk::BufferUsageFlags usage = vk::BufferUsageFlagBits::eStorageBuffer |
+                                 vk::BufferUsageFlagBits::eTransferSrc |
+                                 vk::BufferUsageFlagBits::eTransferDst;
+    if (r.indirect) usage |= vk::BufferUsageFlagBits::eIndirectBuffer;
+    return usage;
+}
 }  // namespace
 
 const char* passStatusName(PassStatus s) {
@@ -195,7 +202,10 @@ void RenderGraph::allocate() {
         res->key = key;
         res->createdAt = mFrame.index;
         if (!r.isImage) {
-            res->buffer = std::make_unique<gpu::Buffer>(mGpu, r.bufferBytes);
+            res->buffer = std::make_unique<gpu::Buffer>(mGpu, r.bufferBytes, bufferUsage(r),
+                                                        r.hostVisible, r.name);
+            if (r.init == BufferInit::Contents)  // constant data, checked to fit by reflectPasses
+                res->buffer->upload(mGpu, r.contents, r.bufferBytes);
             (r.lifetime == Lifetime::Transient ? mAllocatedTransient : mAllocatedPersistent) +=
                 r.bufferBytes;
         } else if (r.aliasGroup >= 0) {
@@ -216,7 +226,7 @@ void RenderGraph::compilePasses() {
     for (size_t n : mPlan.order) {
         PassNode& node = mPlan.nodes[n];
         GraphCompileContext ctx(*this, mPlan, n);
-        node.pass->compile(ctx);
+        attributeAllocations(n, [&] { node.pass->compile(ctx); });
         // Bypass pairs were checked for equal size and format by the compile stages.
     }
 }
@@ -312,17 +322,28 @@ const gpu::Image& RenderGraph::previousFor(size_t node, const std::string& field
     return *r.ring[slotOf(r, framesBack)];
 }
 
+void RenderGraph::attributeAllocations(size_t node, const std::function<void()>& call) {
+    const uint64_t before = mGpu.allocationCount(), graphBefore = mGraphAllocations;
+    call();
+    const uint64_t made = (mGpu.allocationCount() - before) - (mGraphAllocations - graphBefore);
+    if (node < mRecords.size()) mRecords[node].allocationsOutsidePlan += made;
+}
+
 const gpu::Image& RenderGraph::dummyImage(vk::Format format) {
     if (format == vk::Format::eUndefined) format = vk::Format::eR32G32B32A32Sfloat;
     auto& slot = mDummies[format];
-    if (!slot)
+    if (!slot) {
+        const uint64_t before = mGpu.allocationCount();
         slot = std::make_unique<gpu::Image>(
             mGpu, gpu::ImageDesc{.width = 1, .height = 1, .format = format, .debugName = "dummy"});
+        mGraphAllocations += mGpu.allocationCount() - before;
+    }
     return *slot;
 }
 
 const gpu::Buffer& RenderGraph::dummyBuffer() {
     if (!mDummyBuffer) {
+        const uint64_t before = mGpu.allocationCount();
         // Zero-filled, so a shader that reads an unconnected optional buffer sees count 0.
         mDummyBuffer = std::make_unique<gpu::Buffer>(
             mGpu, kDummyBufferBytes,
@@ -331,6 +352,7 @@ const gpu::Buffer& RenderGraph::dummyBuffer() {
             false, "dummy");
         std::vector<std::byte> zeros(kDummyBufferBytes);
         mDummyBuffer->upload(mGpu, zeros.data(), zeros.size());
+        mGraphAllocations += mGpu.allocationCount() - before;
     }
     return *mDummyBuffer;
 }
@@ -354,6 +376,14 @@ const gpu::Image& RenderGraph::image(const std::string& resourceName) const {
             return lastFrame(in->second.resource, in->second.delay);
     }
     throw RuntimeError("no live image resource or connected image input '" + resourceName + "'");
+}
+
+const gpu::Buffer& RenderGraph::buffer(const std::string& resourceName) const {
+    for (size_t i = 0; i < mPlan.resources.size(); ++i)
+        if (mPlan.resources[i].name == resourceName && mResources.size() > i &&
+            mResources[i]->buffer)
+            return *mResources[i]->buffer;
+    throw RuntimeError("no live buffer resource '" + resourceName + "'");
 }
 
 void RenderGraph::setFirstFrameIndex(uint64_t index) {

@@ -3,6 +3,7 @@
 // executes frames: barriers from the plan, bypass of inactive passes, skipping of cached passes,
 // GPU timestamps around every pass.
 #pragma once
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -35,6 +36,10 @@ struct PassRecord {
     std::string reason;
     std::vector<double> gpuMs;  // one entry per frame the pass ran (executed or bypassed)
     uint64_t executions = 0;
+    // Device memory allocations the pass made itself in compile() and execute() since the graph
+    // was built: memory the plan, `validate --dump` and the memory totals cannot see. The pass
+    // contract says 0 (declare a buffer field instead); report.json lists it per pass.
+    uint64_t allocationsOutsidePlan = 0;
 };
 
 struct FrameTiming {
@@ -106,6 +111,8 @@ public:
     // The current content of an alive resource ("pass.field"), e.g. a marked output; for a
     // connected input ("pass.input") the image that input read in the last frame (delay included).
     const gpu::Image& image(const std::string& resourceName) const;
+    // A live buffer resource ("pass.field"), e.g. a pass's counters for a test or a tool.
+    const gpu::Buffer& buffer(const std::string& resourceName) const;
     // Bytes actually allocated on the device (after alignment), by lifetime class.
     uint64_t allocatedTransientBytes() const { return mAllocatedTransient; }
     uint64_t allocatedPersistentBytes() const { return mAllocatedPersistent; }
@@ -134,6 +141,10 @@ private:
     void recordPass(const vk::raii::CommandBuffer& cmd, size_t node, double& passCpuMs);
     void carryRings(const vk::raii::CommandBuffer& cmd, size_t node, bool allOutputs) const;
     void recordBarrier(const vk::raii::CommandBuffer& cmd, const BarrierPlan* plan) const;
+    void recordBufferInit(const vk::raii::CommandBuffer& cmd) const;
+    // Runs a pass's compile or execute and adds the device allocations it made to
+    // PassRecord::allocationsOutsidePlan (the graph's own, e.g. a lazily made dummy, excluded).
+    void attributeAllocations(size_t node, const std::function<void()>& call);
     uint64_t cacheKey(size_t node) const;
     size_t slotOf(const RuntimeResource& r, uint32_t delay) const;
 
@@ -142,6 +153,7 @@ private:
     GraphDesc mDesc;
     CompiledPlan mPlan;
     std::vector<PassRecord> mRecords;
+    uint64_t mGraphAllocations = 0;  // allocations of dummyImage/dummyBuffer
     std::vector<std::unique_ptr<RuntimeResource>> mResources;  // parallel to mPlan.resources
     std::map<std::string, std::unique_ptr<RuntimeResource>> mKeptHistory;  // across rebuilds
     std::vector<std::shared_ptr<gpu::MemoryBlock>> mBlocks;

@@ -19,12 +19,15 @@ double msSince(Clock::time_point t) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
 }
 
-// Everything the graph does is compute or transfer; one access mask covers both directions.
-constexpr vk::PipelineStageFlags2 kStages =
-    vk::PipelineStageFlagBits2::eComputeShader | vk::PipelineStageFlagBits2::eTransfer;
+// Everything the graph does is compute, transfer or an indirect dispatch's argument read (a
+// buffer field declared indirect()); one access mask covers every direction.
+constexpr vk::PipelineStageFlags2 kStages = vk::PipelineStageFlagBits2::eComputeShader |
+                                            vk::PipelineStageFlagBits2::eTransfer |
+                                            vk::PipelineStageFlagBits2::eDrawIndirect;
 constexpr vk::AccessFlags2 kAccess =
     vk::AccessFlagBits2::eShaderRead | vk::AccessFlagBits2::eShaderWrite |
-    vk::AccessFlagBits2::eTransferRead | vk::AccessFlagBits2::eTransferWrite;
+    vk::AccessFlagBits2::eTransferRead | vk::AccessFlagBits2::eTransferWrite |
+    vk::AccessFlagBits2::eIndirectCommandRead;
 
 uint64_t mix(uint64_t h, uint64_t v) {  // FNV-1a style combine
     h ^= v + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
@@ -101,6 +104,20 @@ void RenderGraph::carryRings(const vk::raii::CommandBuffer& cmd, size_t n, bool 
     if (copied) recordBarrier(cmd, nullptr);
 }
 
+void RenderGraph::recordBufferInit(const vk::raii::CommandBuffer& cmd) const {
+    // FieldDesc::init: zeros on a buffer's first frame, and for ZeroOnReset on every frame that
+    // starts a history, so no pass clears its own counters (and no pass records the barrier).
+    for (size_t i = 0; i < mPlan.resources.size(); ++i) {
+        const ResourcePlan& r = mPlan.resources[i];
+        const RuntimeResource& res = *mResources[i];
+        if (!res.buffer) continue;
+        const bool fresh = res.createdAt == mFrame.index;
+        if ((r.init == BufferInit::Zero && fresh) ||
+            (r.init == BufferInit::ZeroOnReset && (fresh || mFrame.framesSinceReset == 0)))
+            cmd.fillBuffer(res.buffer->buffer(), 0, VK_WHOLE_SIZE, 0u);
+    }
+}
+
 void RenderGraph::recordPass(const vk::raii::CommandBuffer& cmd, size_t n, double& passCpuMs) {
     PassNode& node = mPlan.nodes[n];
     PassRecord& record = mRecords[n];
@@ -151,7 +168,7 @@ void RenderGraph::recordPass(const vk::raii::CommandBuffer& cmd, size_t n, doubl
     carryRings(cmd, n, false);
     GraphExecuteContext ctx(*this, mPlan, n, cmd, mFrame);
     auto t0 = Clock::now();
-    node.pass->execute(ctx);
+    attributeAllocations(n, [&] { node.pass->execute(ctx); });
     passCpuMs += msSince(t0);
     bumpOutputs();
     record.status = PassStatus::Executed;
@@ -177,7 +194,9 @@ FrameTiming RenderGraph::runFrame() {
     cmd.reset();
     cmd.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
     mTimestamps->reset(cmd);
-    // The previous frame (and any upload) is ordered before this one by a full barrier.
+    recordBufferInit(cmd);
+    // The previous frame (and any upload or buffer clear) is ordered before this one by a full
+    // barrier.
     recordBarrier(cmd, nullptr);
     size_t nextBarrier = 0;
     for (size_t pos = 0; pos < mPlan.order.size(); ++pos) {

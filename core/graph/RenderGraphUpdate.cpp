@@ -13,7 +13,9 @@ bool sameResource(const ResourcePlan& a, const ResourcePlan& b) {
            a.isImage == b.isImage && a.width == b.width && a.height == b.height &&
            a.format == b.format && a.bufferBytes == b.bufferBytes && a.lifetime == b.lifetime &&
            a.ringSize == b.ringSize && a.declaredHistory == b.declaredHistory &&
-           a.firstUse == b.firstUse && a.lastUse == b.lastUse && a.aliasGroup == b.aliasGroup;
+           a.firstUse == b.firstUse && a.lastUse == b.lastUse && a.aliasGroup == b.aliasGroup &&
+           a.indirect == b.indirect && a.hostVisible == b.hostVisible && a.init == b.init &&
+           a.contents == b.contents;
 }
 
 // Same shape: everything allocate(), the barrier plan and the executor depend on is equal, so
@@ -83,7 +85,7 @@ RenderGraph::UpdateResult RenderGraph::update(const GraphDesc& desc) {
         keep[n] = saveParams(*mPlan.nodes[n].pass, false) == saveParams(*plan.nodes[n].pass, false);
         if (keep[n]) continue;
         GraphCompileContext ctx(*this, plan, n);
-        plan.nodes[n].pass->compile(ctx);
+        attributeAllocations(n, [&] { plan.nodes[n].pass->compile(ctx); });
         result.recompiled.push_back(plan.nodes[n].name);
     }
     for (size_t n : plan.order)

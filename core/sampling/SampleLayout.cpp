@@ -22,8 +22,6 @@ uint32_t hashCombine(uint32_t seed, uint32_t v) {
     return pcgHash(seed ^ (v + 0x9e3779b9u + (seed << 6) + (seed >> 2)));
 }
 
-constexpr uint64_t kZeroBytes = 256;  // like RenderGraph's dummy buffer
-
 }  // namespace
 
 uint32_t SampleLayout::maxSamples() const {
@@ -121,22 +119,6 @@ std::vector<std::string> validateSampleLayout(const SampleLayout& layout, uint32
         if (!seen.insert(e.pixel).second) issues.push_back(where + ": pixel listed twice");
     }
     return issues;
-}
-
-SampleLayoutInput::SampleLayoutInput(gpu::Context& context) {
-    mZero = std::make_unique<gpu::Buffer>(
-        context, kZeroBytes,
-        vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false,
-        "sample_layout.zero");
-    std::vector<std::byte> zeros(kZeroBytes);
-    mZero->upload(context, zeros.data(), zeros.size());
-}
-
-SampleLayoutInput::~SampleLayoutInput() = default;
-
-void SampleLayoutInput::bind(gpu::ComputePipeline& pipeline, const gpu::Buffer* connected) const {
-    if (!pipeline.hasBinding(kSampleLayoutBinding)) return;
-    pipeline.bind(kSampleLayoutBinding, connected ? *connected : *mZero);
 }
 
 void checkSampleLayoutSize(uint32_t width, uint32_t height) {

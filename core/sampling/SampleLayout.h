@@ -6,7 +6,7 @@
 // This is seed 000's "coordinates buffer" (§3.2, §4.1): the list of pixels, in the coordinates of
 // the whole side-by-side stereo image, that the path tracer launches rays for. Passes read the
 // graph field `layout`; in GLSL the block is `sample_layout` because `layout` is a keyword, so a
-// pass binds it itself with SampleLayoutInput (below) instead of through bindFields.
+// pass binds it with ExecuteContext::bindField (an open input gets the graph's zero buffer).
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -99,23 +99,5 @@ SampleLayout buildSampleLayout(const SamplePatternOptions& o, uint32_t width, ui
 // them.
 std::vector<std::string> validateSampleLayout(const SampleLayout& layout, uint32_t width,
                                               uint32_t height);
-
-// Binds the `sample_layout` block of a pipeline: the connected `layout` buffer or, when the
-// input is open, a 256-byte zero buffer owned here (count 0), mirroring what bindFields does for
-// other open optional inputs. Create it in Pass::compile and pass its name as an extra resource
-// to createPipeline (kSampleLayoutBinding).
-class SampleLayoutInput {
-public:
-    explicit SampleLayoutInput(gpu::Context& context);
-    ~SampleLayoutInput();
-    SampleLayoutInput(const SampleLayoutInput&) = delete;
-    SampleLayoutInput& operator=(const SampleLayoutInput&) = delete;
-    // `connected` is the field's buffer or null when the input is open. No-op when the
-    // pipeline does not declare sample_layout.
-    void bind(gpu::ComputePipeline& pipeline, const gpu::Buffer* connected) const;
-
-private:
-    std::unique_ptr<gpu::Buffer> mZero;
-};
 
 }  // namespace fovea::sampling

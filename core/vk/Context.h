@@ -1,6 +1,7 @@
 // The Vulkan instance + device + queue fovea computes on, plus the few shared objects every pass
 // needs (one-shot submits, samplers, the shader compiler, validation message capture).
 #pragma once
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -113,6 +114,12 @@ public:
         setObjectName(Handle::objectType, bits, name);
     }
 
+    // How many device memory allocations (vkAllocateMemory) this context has made so far,
+    // counted by core/vk/Resources.cpp. The render graph compares it around each pass's compile
+    // and execute to find memory a pass allocates outside the plan (report.json).
+    uint64_t allocationCount() const { return mAllocations.load(std::memory_order_relaxed); }
+    void countAllocation() const { mAllocations.fetch_add(1, std::memory_order_relaxed); }
+
 private:
     struct MessageSink {
         mutable std::mutex mutex;
@@ -143,6 +150,7 @@ private:
     bool mValidation = false;
     bool mSyncValidation = false;
     bool mDebugUtils = false;
+    mutable std::atomic<uint64_t> mAllocations{0};
 };
 
 }  // namespace fovea::gpu

@@ -124,6 +124,7 @@ vk::raii::DeviceMemory allocate(const Context& context, vk::DeviceSize size, uin
         throw RuntimeError("cannot allocate " + std::to_string(size) + " bytes (" +
                            std::to_string(size >> 20) + " MiB) for " + what + ": larger than " +
                            heapOf(context, type) + "; render at a smaller --size");
+    context.countAllocation();
     try {
         return vk::raii::DeviceMemory(
             context.device(), vk::MemoryAllocateInfo{

@@ -36,6 +36,8 @@ nlohmann::json buildReport(const graph::RenderGraph& graph, const ReportInputs& 
                   {"status", graph::passStatusName(rec.status)},
                   {"reason", rec.reason},
                   {"executions", rec.executions},
+                  // Memory the pass allocated itself, invisible to the plan (contract: 0).
+                  {"allocations_outside_plan", rec.allocationsOutsidePlan},
                   {"gpu_ms", statsJson(computeStats(rec.gpuMs))}};
         // Which shader specialization ran (scene features, BRDF, ...), for passes that have one.
         if (node.pass) {

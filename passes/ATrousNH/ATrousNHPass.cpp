@@ -26,7 +26,8 @@ constexpr int kInput = 0, kPing = 1, kDenoisedSource = 3, kDenoised = 0;
 enum FillArgsMode { kResetCounters = 0, kFillLevelArgs = 1, kCopyBackArgs = 2 };
 // atrous_tiles block (tile_lists.comp): 8 x uvec4 indirect args + count, then 8 lists.
 constexpr vk::DeviceSize kTileArgsBytes = 8 * 16;
-constexpr uint32_t kTileSize = 8;  // = atrous_nh.comp's workgroup
+constexpr uint32_t kTileSize = 8;                  // = atrous_nh.comp's workgroup
+constexpr uint64_t kTileListBytesPerTile = 8 * 4;  // one uint entry in each of the 8 lists
 enum TileListMode { kResetTiles = 0, kBuildTiles = 1, kFinalizeTiles = 2 };
 
 // 1 / sigma^2, or 0 = the term is off (sigma 0 would divide by zero).
@@ -111,6 +112,24 @@ void ATrousNHPass::reflect(graph::Reflection& r) const {
     r.output("denoised", vk::Format::eR32G32B32A32Sfloat)
         .sameAs("color")
         .doc("denoised radiance; a = 1 where the pixel has a value, 0 where its eye has none");
+    r.internal("fill_state", vk::Format::eUndefined)
+        .buffer(kFillStateBytes)
+        .indirect()
+        .doc(
+            "atrous_fill block (shaders/atrous_nh): the fill levels' indirect group counts, set "
+            "to 0 on the GPU once no hole is left, and the hole counter");
+    // Lists only when the tiles dispatch can happen (a mask is connected is known at compile).
+    const bool tileLists = mDispatch == "tiles" && mLayers > 1;
+    r.internal("tiles", vk::Format::eUndefined)
+        .bufferPerBlock(tileLists ? kTileSize : 0, tileLists ? kTileListBytesPerTile : 0,
+                        tileLists ? kTileArgsBytes : kTileArgsBytes + 4)
+        .sizedBy("color")
+        .indirect()
+        .persistent()
+        .doc(
+            "atrous_tiles block (shaders/atrous_nh/tile_lists.comp): per key, the indirect "
+            "group count and the list of 8x8 tiles holding the layers it updates; kept until the "
+            "mask changes");
     r.internal("ping", vk::Format::eR32G32B32A32Sfloat)
         .sameAs("color")
         .doc(
@@ -143,20 +162,11 @@ void ATrousNHPass::compile(graph::CompileContext& ctx) {
                       : "");
     mPipeline = ctx.createPipeline("atrous_nh/atrous_nh.comp", {}, {"atrous_fill", "atrous_tiles"});
     mFillArgs = ctx.createPipeline("atrous_nh/fill_args.comp", {}, {"atrous_fill"});
-    mFillState = std::make_unique<gpu::Buffer>(
-        ctx.gpu(), kFillStateBytes,
-        vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eIndirectBuffer, false,
-        name() + ".fill");
-    // Tile lists: one per key (set of layers), each with room for every tile of the image.
+    // Tile lists: one per key (set of layers), each with room for every tile of the image (the
+    // `tiles` field's size, which follows `color`).
     const auto extent = ctx.extent("color");
     mTileCount = ((extent.width + kTileSize - 1) / kTileSize) *
                  ((extent.height + kTileSize - 1) / kTileSize);
-    const vk::DeviceSize listBytes = mUseTiles ? 8 * vk::DeviceSize(mTileCount) * 4 : 4;
-    mTiles = std::make_unique<gpu::Buffer>(ctx.gpu(), kTileArgsBytes + listBytes,
-                                           vk::BufferUsageFlagBits::eStorageBuffer |
-                                               vk::BufferUsageFlagBits::eIndirectBuffer |
-                                               vk::BufferUsageFlagBits::eTransferSrc,
-                                           false, name() + ".tiles");
     mTileLists =
         mUseTiles ? ctx.createPipeline("atrous_nh/tile_lists.comp", {}, {"atrous_tiles"}) : nullptr;
     mTilesBuilt = false;
@@ -217,13 +227,13 @@ void ATrousNHPass::buildTileLists(graph::ExecuteContext& ctx, uint32_t keys) {
         return;
     const auto& out = ctx.image("denoised");
     ctx.bindFields(*mTileLists);
-    mTileLists->bind("atrous_tiles", *mTiles)
-        .set("size", glm::ivec2(int(out.width()), int(out.height())))
+    ctx.bindField(*mTileLists, "atrous_tiles", "tiles");
+    mTileLists->set("size", glm::ivec2(int(out.width()), int(out.height())))
         .set("layerCount", mLayers)
         .set("tileStride", int(mTileCount))
         .set("keys", int(keys));
-    // Last frame's indirect reads of the lists are done before they are overwritten.
-    gpu::computeToIndirectBarrier(ctx.cmd());
+    // Last frame's indirect reads of the lists are ordered before this by the graph's barrier
+    // at the start of the frame (it covers indirect-argument reads of `indirect()` fields).
     mTileLists->set("mode", int(kResetTiles)).dispatch(ctx.cmd(), 1);
     gpu::computeToComputeBarrier(ctx.cmd());
     mTileLists->set("mode", int(kBuildTiles)).dispatch(ctx.cmd(), out.width(), out.height());
@@ -270,8 +280,10 @@ void ATrousNHPass::execute(graph::ExecuteContext& ctx) {
     for (uint32_t k : keys) usedKeys |= k != 0 ? 1u << k : 0u;
     if (usedKeys != 0) buildTileLists(ctx, usedKeys);
     const auto groups = mPipeline->groupCount(out.width(), out.height());
-    mPipeline->bind("atrous_fill", *mFillState).bind("atrous_tiles", *mTiles);
-    mFillArgs->bind("atrous_fill", *mFillState);
+    const gpu::Buffer& fillState = ctx.buffer("fill_state");
+    const gpu::Buffer& tiles = ctx.buffer("tiles");
+    mPipeline->bind("atrous_fill", fillState).bind("atrous_tiles", tiles);
+    mFillArgs->bind("atrous_fill", fillState);
     auto fillArgs = [&](FillArgsMode mode) {
         mFillArgs->set("mode", int(mode)).set("fullGroups", glm::ivec2(groups[0], groups[1]));
         mFillArgs->dispatch(ctx.cmd(), 1);
@@ -298,7 +310,7 @@ void ATrousNHPass::execute(graph::ExecuteContext& ctx) {
         if (keys[i] == 0)
             mPipeline->dispatch(ctx.cmd(), out.width(), out.height());
         else
-            mPipeline->dispatchIndirect(ctx.cmd(), *mTiles, vk::DeviceSize(keys[i]) * 16);
+            mPipeline->dispatchIndirect(ctx.cmd(), tiles, vk::DeviceSize(keys[i]) * 16);
         src = dst == kPing ? kPing : kDenoisedSource;
     }
     mPipeline->set("tileKey", 0).set("alsoDst", -1);
@@ -328,7 +340,7 @@ void ATrousNHPass::execute(graph::ExecuteContext& ctx) {
             .set("stepWidth", schedule[i].step)
             .set("fillOnly", 1)
             .set("countHoles", 1);
-        mPipeline->dispatchIndirect(ctx.cmd(), *mFillState, kFillArgsOffset);
+        mPipeline->dispatchIndirect(ctx.cmd(), fillState, kFillArgsOffset);
     }
     gpu::computeToIndirectBarrier(ctx.cmd());
     fillArgs(kCopyBackArgs);
@@ -338,7 +350,7 @@ void ATrousNHPass::execute(graph::ExecuteContext& ctx) {
         .set("activeLayers", 0)
         .set("fillOnly", 0)
         .set("countHoles", 0);
-    mPipeline->dispatchIndirect(ctx.cmd(), *mFillState, kCopyArgsOffset);
+    mPipeline->dispatchIndirect(ctx.cmd(), fillState, kCopyArgsOffset);
 }
 
 }  // namespace fovea::passes

@@ -31,9 +31,8 @@ public:
     static std::vector<uint32_t> levelTileKeys(const std::vector<ATrousDispatch>& schedule,
                                                int layers, bool tiles);
 
-    // For tests: the tile lists (atrous_tiles block of shaders/atrous_nh/tile_lists.comp) and
-    // the capacity of one list; null before compile.
-    const gpu::Buffer* tileLists() const { return mTiles.get(); }
+    // For tests: the capacity of one tile list (the lists are the `tiles` field, the
+    // atrous_tiles block of shaders/atrous_nh/tile_lists.comp).
     uint32_t tileCount() const { return mTileCount; }
     uint64_t tileListBuilds() const { return mTileBuilds; }
 
@@ -57,13 +56,11 @@ private:
     // GPU-driven hole filling: fill levels are indirect dispatches whose group count the GPU
     // sets to 0 once no hole is left (no read-back; most frames need no fill level at all).
     std::unique_ptr<gpu::ComputePipeline> mFillArgs;
-    std::unique_ptr<gpu::Buffer> mFillState;  // atrous_fill block (shaders/atrous_nh)
     // Layer-restricted levels (dispatch = tiles, mask, >= 2 layers): per-key tile lists built by
     // tile_lists.comp, cached until the mask input's version (or image) changes.
     void buildTileLists(graph::ExecuteContext& ctx, uint32_t keys);
     bool mUseTiles = false;
     std::unique_ptr<gpu::ComputePipeline> mTileLists;
-    std::unique_ptr<gpu::Buffer> mTiles;  // atrous_tiles block
     uint32_t mTileCount = 0;
     bool mTilesBuilt = false;
     uint64_t mTileVersion = 0;

@@ -1,5 +1,6 @@
 #include "passes/BMFR/BMFRPass.h"
 
+#include "core/graph/DenoiserInputs.h"
 #include "core/sampling/BlockGrid.h"
 #include "core/sampling/VisualPolar.h"
 #include "core/vk/Barriers.h"
@@ -96,38 +97,19 @@ void BMFRPass::reflect(graph::Reflection& r) const {
     const auto undefined = vk::Format::eUndefined;
     // Every size follows `color`: the screen, or a Visual-Polar grid (seed 003 P5 §3.3: BMFR runs
     // unchanged on the VP image; reprojection comes from the VP-space `motion`).
-    r.input("color", undefined)
-        .anySize()
-        .floatOnly()
-        .doc("noisy albedo-demodulated radiance (PathTrace `demodulated`), a = samples (0 = none)");
-    r.input("position", undefined)
-        .sameAs("color")
-        .floatOnly()
-        .doc("world position, w > 0 on a hit");
-    r.input("normal", undefined).sameAs("color").floatOnly().doc("shading normal (unit length)");
-    r.input("albedo", undefined)
-        .sameAs("color")
-        .floatOnly()
-        .optional()
-        .doc("remodulation albedo (and a feature with features = albedo); open: 1");
-    r.input("emission", undefined)
-        .sameAs("color")
-        .floatOnly()
-        .optional()
-        .doc("emission added back after remodulation; open: 0");
-    r.input("motion", undefined)
-        .sameAs("color")
-        .floatOnly()
-        .optional()
-        .doc("previous pixel - current pixel; open: reproject positions through the camera");
-    r.input("vp")
-        .buffer(sampling::kVisualPolarParamsBytes)
-        .optional()
-        .doc(
-            "VisualPolarWarp `vp` block (with a Visual-Polar `color` and GBuffer VP `motion`): "
-            "history taps at each column's own phi height, wrapped on phi (P5 §3.3); with the "
-            "warp's staircase the block columns follow its x offset (P5 §3.3); open: screen "
-            "addressing");
+    using graph::DenoiserInput;
+    graph::declareDenoiserInput(r, DenoiserInput::Color);
+    graph::declareDenoiserInput(r, DenoiserInput::Position);
+    graph::declareDenoiserInput(r, DenoiserInput::Normal);
+    graph::declareDenoiserInput(r, DenoiserInput::Albedo, "a feature with features = albedo");
+    graph::declareDenoiserInput(r, DenoiserInput::Emission);
+    graph::declareDenoiserInput(r, DenoiserInput::Motion);
+    graph::declareDenoiserInput(
+        r, DenoiserInput::VisualPolar,
+        "with a Visual-Polar `color` and GBuffer VP `motion`: history taps at each column's own "
+        "phi height, wrapped on phi (P5 §3.3); with the "
+        "warp's staircase the block columns follow its x offset (P5 §3.3); open: screen "
+        "addressing");
 
     const auto rgba32 = vk::Format::eR32G32B32A32Sfloat;
     r.output("filtered", rgba32)
@@ -142,6 +124,7 @@ void BMFRPass::reflect(graph::Reflection& r) const {
     r.output("stats", undefined)
         .buffer(kStatsBytes)
         .persistent()
+        .zeroOnReset()
         .doc(
             "uint[4] since the last reset: non-finite colour samples, non-finite geometry "
             "pixels, negative colour samples, blocks with dropped columns");
@@ -177,8 +160,7 @@ void BMFRPass::reflect(graph::Reflection& r) const {
 void BMFRPass::validate(const graph::ValidateContext& ctx) const {
     if (mFeatures == "albedo" && !ctx.connected("albedo"))
         ctx.fail("features", "'albedo' needs the input 'albedo' connected");
-    if (ctx.connected("vp") && !ctx.connected("motion"))
-        ctx.fail("vp", "a Visual-Polar image needs the input 'motion' (GBuffer VP motion)");
+    graph::validateVisualPolarInputs(ctx);
 }
 
 BMFRPass::Choices BMFRPass::choices() const {
@@ -253,14 +235,7 @@ void BMFRPass::execute(graph::ExecuteContext& ctx) {
     mBlocksX = blocksAcross(out.width());
     mBlocksY = blocksAcross(out.height());
 
-    if (!history) {
-        // Counters restart with the history (cumulative since the last reset).
-        cmd.fillBuffer(ctx.buffer("stats").buffer(), 0, VK_WHOLE_SIZE, 0u);
-        gpu::memoryBarrier(
-            cmd, vk::PipelineStageFlagBits2::eTransfer, vk::AccessFlagBits2::eTransferWrite,
-            vk::PipelineStageFlagBits2::eComputeShader,
-            vk::AccessFlagBits2::eShaderStorageRead | vk::AccessFlagBits2::eShaderStorageWrite);
-    }
+    // `stats` restarts with the history: the graph zeroes it (zeroOnReset).
     if (mTimestamps) {
         mTimestamps->reset(cmd);
         mTimestamps->write(cmd, 0);

@@ -2,6 +2,7 @@
 
 #include <cctype>
 
+#include "core/graph/DenoiserInputs.h"
 #include "core/sampling/VisualPolar.h"
 #include "core/scene/SceneGpu.h"
 #include "core/vk/Barriers.h"
@@ -29,12 +30,9 @@ void GBufferPass::reflect(graph::Reflection& r) const {
             "VisualPolarWarp coords (seed 003 P5 §3.2): trace a regular (rho, phi) grid, one "
             "primary ray per traced texel at its screen position; the outputs take its size, "
             "untraced texels get flags bit2 (clipped); open = the screen grid");
-    r.input("vp")
-        .buffer(sampling::kVisualPolarParamsBytes)
-        .optional()
-        .doc(
-            "VisualPolarWarp `vp` block (with coords): motion in Visual-Polar texels (previous "
-            "screen position mapped into the grid); open: motion in screen pixels");
+    graph::declareDenoiserInput(r, graph::DenoiserInput::VisualPolar,
+                                "with coords: motion in Visual-Polar texels (previous screen "
+                                "position mapped into the grid); open: motion in screen pixels");
     r.output("visibility", vk::Format::eR32G32B32A32Uint)
         .sameAs("coords")
         .doc(
@@ -87,7 +85,6 @@ void GBufferPass::compile(graph::CompileContext& ctx) {
     }
     mPipeline =
         ctx.createPipeline("gbuffer/gbuffer.comp", defines, {sampling::kSampleLayoutBinding});
-    mLayoutInput = std::make_unique<sampling::SampleLayoutInput>(ctx.gpu());
 }
 
 void GBufferPass::execute(graph::ExecuteContext& ctx) {
@@ -95,7 +92,7 @@ void GBufferPass::execute(graph::ExecuteContext& ctx) {
     const bool useLayout = ctx.connected(sampling::kSampleLayoutField);
     const bool useCoords = ctx.connected("coords");
     ctx.bindFields(*mPipeline);
-    mLayoutInput->bind(*mPipeline, useLayout ? &ctx.buffer(sampling::kSampleLayoutField) : nullptr);
+    ctx.bindField(*mPipeline, sampling::kSampleLayoutBinding, sampling::kSampleLayoutField);
     mPipeline->set("size", glm::uvec2(out.width(), out.height()))
         .set("useLayout", uint32_t(useLayout))
         .set("useCoords", uint32_t(useCoords))

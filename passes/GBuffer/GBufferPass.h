@@ -29,7 +29,6 @@ private:
     bool mStochastic = false;  // the scene has BLEND materials (SceneGpu::hasStochasticAlpha)
     std::string mVariant;
     std::unique_ptr<gpu::ComputePipeline> mPipeline;
-    std::unique_ptr<sampling::SampleLayoutInput> mLayoutInput;
 };
 
 }  // namespace fovea::passes

@@ -62,6 +62,10 @@ void ImageFilePass::reflect(graph::Reflection& r) const {
     r.output("color", vk::Format::eR32G32B32A32Sfloat)
         .screen()
         .doc("the file's pixels (must have the render size)");
+    r.internal("staging", vk::Format::eUndefined)
+        .bufferPerPixel(16)
+        .hostVisible()
+        .doc("host-visible copy of this frame's pixels (RGBA32F), copied into `color`");
 }
 
 std::string ImageFilePass::fileFor(uint64_t frame) const {
@@ -108,9 +112,6 @@ void ImageFilePass::compile(graph::CompileContext& ctx) {
     const auto& size = ctx.renderSize();
     // The first frame's file is read now: a missing or wrong-size file fails before any frame.
     readChecked(fileFor(0), size.width, size.height);
-    mStaging = std::make_unique<gpu::Buffer>(
-        ctx.gpu(), vk::DeviceSize(size.width) * size.height * 16,
-        vk::BufferUsageFlagBits::eTransferSrc, true, name() + " staging");
 }
 
 void ImageFilePass::execute(graph::ExecuteContext& ctx) {
@@ -118,13 +119,14 @@ void ImageFilePass::execute(graph::ExecuteContext& ctx) {
     const std::vector<float> pixels = readChecked(fileFor(frame.index), frame.width, frame.height);
     // Frames are synchronous (RenderGraph waits for each), so the previous copy out of the
     // staging buffer has finished; the host write is visible to the copy at submit.
-    std::memcpy(mStaging->mapped(), pixels.data(), pixels.size() * sizeof(float));
+    const gpu::Buffer& staging = ctx.buffer("staging");
+    std::memcpy(staging.mapped(), pixels.data(), pixels.size() * sizeof(float));
     const gpu::Image& target = ctx.image("color");
     vk::BufferImageCopy region{.imageSubresource = {vk::ImageAspectFlagBits::eColor, 0, 0, 1},
                                .imageExtent = vk::Extent3D{frame.width, frame.height, 1}};
     // A transfer write to the pass's own output in GENERAL: the graph's barriers order it
     // (they cover compute and transfer on both sides).
-    ctx.cmd().copyBufferToImage(mStaging->buffer(), target.image(), vk::ImageLayout::eGeneral,
+    ctx.cmd().copyBufferToImage(staging.buffer(), target.image(), vk::ImageLayout::eGeneral,
                                 region);
 }
 

@@ -33,7 +33,6 @@ private:
     std::string mResolvedPath;  // mPath resolved against the graph file's folder (compile)
     int mFirstFrame = 0;
     std::string mChannels;
-    std::unique_ptr<gpu::Buffer> mStaging;  // host-visible, width * height * 16 bytes
 };
 
 // The message for a malformed frame pattern (formatFramePattern's InputError, validate()).

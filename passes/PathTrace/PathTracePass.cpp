@@ -80,6 +80,12 @@ void PathTracePass::params(graph::ParamVisitor& v) {
           "benchmarks: count every traced ray by kind (atomic counters; rayCounts())");
 }
 
+namespace {
+uint64_t specularAlbedoTableBytes() {
+    return shading::bakedSpecularAlbedoTable().size() * sizeof(glm::vec2);
+}
+}  // namespace
+
 void PathTracePass::reflect(graph::Reflection& r) const {
     r.input("visibility", vk::Format::eR32G32B32A32Uint)
         .optional()
@@ -93,6 +99,17 @@ void PathTracePass::reflect(graph::Reflection& r) const {
         .buffer(sampling::kSampleLayoutHeaderBytes)
         .optional()
         .doc("sample layout (CONTRACT): only listed pixels are traced, with their count");
+    r.internal("rays", vk::Format::eUndefined)
+        .buffer(kRayKinds * sizeof(uint32_t))
+        .persistent()
+        .zeroed()
+        .doc(
+            "countRays: rays traced since compile, by kind (primary, shadow of primary, indirect, "
+            "shadow of indirect, last-vertex BRDF), uint32 each; report.json statistics");
+    r.internal("specular_albedo_table", vk::Format::eUndefined)
+        .buffer(specularAlbedoTableBytes())
+        .contents(shading::bakedSpecularAlbedoTable().data(), specularAlbedoTableBytes())
+        .doc("the pre-integrated GGX reflectance table (core/shading/SpecularAlbedo.h), constant");
     r.output("radiance", vk::Format::eR32G32B32A32Sfloat)
         .sameAs("visibility")
         .doc("mean radiance of the pixel's samples; a = samples traced (0 = untraced)");
@@ -181,25 +198,8 @@ void PathTracePass::compile(graph::CompileContext& ctx) {
     mTrace = ctx.createPipeline(
         "pathtrace/pathtrace.comp", defines,
         {sampling::kSampleLayoutBinding, "pathtrace_rays", "specular_albedo_table"});
-    if (!mSpecularAlbedo) {  // constant data: uploaded once per pass, kept across rebuilds
-        const auto& table = shading::bakedSpecularAlbedoTable();
-        const size_t bytes = table.size() * sizeof(glm::vec2);
-        mSpecularAlbedo = std::make_unique<gpu::Buffer>(
-            ctx.gpu(), bytes,
-            vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false,
-            name() + ".specular_albedo");
-        mSpecularAlbedo->upload(ctx.gpu(), table.data(), bytes);
-    }
-    mRayCounter.reset();
-    mCounterCleared = false;
-    if (mCountRays)
-        mRayCounter = std::make_unique<gpu::Buffer>(ctx.gpu(), kRayKinds * sizeof(uint32_t),
-                                                    vk::BufferUsageFlagBits::eStorageBuffer |
-                                                        vk::BufferUsageFlagBits::eTransferSrc |
-                                                        vk::BufferUsageFlagBits::eTransferDst,
-                                                    false, name() + ".rays");
+    mCountersWritten = false;
     mClear = ctx.createPipeline("pathtrace/clear.comp");
-    mLayoutInput = std::make_unique<sampling::SampleLayoutInput>(ctx.gpu());
 }
 
 void PathTracePass::execute(graph::ExecuteContext& ctx) {
@@ -213,20 +213,14 @@ void PathTracePass::execute(graph::ExecuteContext& ctx) {
         mClear->dispatch(ctx.cmd(), out.width(), out.height());
         gpu::computeToComputeBarrier(ctx.cmd());
     }
-    if (mRayCounter && !mCounterCleared) {
-        // Counts accumulate on the GPU from the first frame after compile (32 bits each: about
-        // 4000 frames of 640x360 at 1 spp before they wrap).
-        mCounterCleared = true;
-        ctx.cmd().fillBuffer(mRayCounter->buffer(), 0, VK_WHOLE_SIZE, 0u);
-        gpu::memoryBarrier(
-            ctx.cmd(), vk::PipelineStageFlagBits2::eTransfer, vk::AccessFlagBits2::eTransferWrite,
-            vk::PipelineStageFlagBits2::eComputeShader,
-            vk::AccessFlagBits2::eShaderStorageRead | vk::AccessFlagBits2::eShaderStorageWrite);
-    }
-    if (mRayCounter) mTrace->bind("pathtrace_rays", *mRayCounter);
-    mTrace->bind("specular_albedo_table", *mSpecularAlbedo);
+    // The graph zeroes `rays` on its first frame (counts accumulate from the first frame after
+    // compile; 32 bits each: about 4000 frames of 640x360 at 1 spp before they wrap) and uploads
+    // the reflectance table once.
+    mCountersWritten = mCountRays;
+    ctx.bindField(*mTrace, "pathtrace_rays", "rays");
+    ctx.bindField(*mTrace, "specular_albedo_table", "specular_albedo_table");
     ctx.bindFields(*mTrace);
-    mLayoutInput->bind(*mTrace, mUseLayout ? &ctx.buffer(sampling::kSampleLayoutField) : nullptr);
+    ctx.bindField(*mTrace, sampling::kSampleLayoutBinding, sampling::kSampleLayoutField);
     uint64_t seed = ctx.frame().seed;
     mTrace->set("size", size)
         .set("seedLo", uint32_t(seed & 0xFFFFFFFFu))
@@ -240,17 +234,17 @@ void PathTracePass::execute(graph::ExecuteContext& ctx) {
     mTrace->dispatch(ctx.cmd(), out.width(), out.height());
 }
 
-PathTracePass::RayCounts PathTracePass::rayCounts(const gpu::Context& context) const {
+PathTracePass::RayCounts PathTracePass::rayCounts(const gpu::Context& context,
+                                                  const gpu::Buffer& rays) {
     RayCounts out{};
-    if (!mRayCounter || !mCounterCleared) return out;
-    auto counts = mRayCounter->downloadAs<uint32_t>(context);
+    auto counts = rays.downloadAs<uint32_t>(context);
     for (size_t k = 0; k < out.size() && k < counts.size(); ++k) out[k] = counts[k];
     return out;
 }
 
 nlohmann::json PathTracePass::statistics(const graph::StatisticsContext& ctx) const {
-    if (!mRayCounter || !mCounterCleared) return nullptr;
-    const auto c = rayCounts(ctx.gpu);
+    if (!mCountersWritten) return nullptr;
+    const auto c = rayCounts(ctx.gpu, ctx.buffer("rays"));
     return {{"rays_primary", c[0]},   {"rays_shadow_primary", c[1]},
             {"rays_indirect", c[2]},  {"rays_shadow_indirect", c[3]},
             {"rays_last_brdf", c[4]}, {"rays_total", c[0] + c[1] + c[2] + c[3] + c[4]}};

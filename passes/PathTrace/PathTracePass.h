@@ -12,9 +12,7 @@
 
 #include "core/graph/Pass.h"
 
-namespace fovea::sampling {
-class SampleLayoutInput;
-}
+namespace fovea::sampling {}
 
 namespace fovea::passes {
 
@@ -35,9 +33,9 @@ public:
     // from indirect hits, the last vertex's emitter-seeking BRDF ray (lastBounceMis).
     static constexpr size_t kRayKinds = 5;
     using RayCounts = std::array<uint64_t, kRayKinds>;
-    // With countRays on: rays traced since the last compile (build), by kind. Waits for the GPU.
-    // Zeros otherwise.
-    RayCounts rayCounts(const gpu::Context& context) const;
+    // The counts in the pass's `rays` buffer (RenderGraph::buffer("<pass>.rays")): with countRays
+    // on, rays traced since the last compile (build), by kind; zeros otherwise. Waits for the GPU.
+    static RayCounts rayCounts(const gpu::Context& context, const gpu::Buffer& rays);
     // report.json: the same counts (with countRays on), by kind and in total.
     nlohmann::json statistics(const graph::StatisticsContext& ctx) const override;
     // `spp` per frame (a reference graph's frame count; with a sample layout the layout decides,
@@ -66,10 +64,7 @@ private:
     bool mUseVisibility = false, mUseAlbedo = false, mUseLayout = false;
     std::unique_ptr<gpu::ComputePipeline> mTrace;
     std::unique_ptr<gpu::ComputePipeline> mClear;
-    std::unique_ptr<sampling::SampleLayoutInput> mLayoutInput;
-    std::unique_ptr<gpu::Buffer> mSpecularAlbedo;  // the GGX reflectance table (SpecularAlbedo.h)
-    std::unique_ptr<gpu::Buffer> mRayCounter;      // countRays: kRayKinds x uint32, summed on GPU
-    bool mCounterCleared = false;                  // zeroed by the first execute after compile
+    bool mCountersWritten = false;  // countRays and executed since compile: `rays` is counting
 };
 
 }  // namespace fovea::passes

@@ -1,5 +1,6 @@
 #include "passes/SVGF/SVGFPass.h"
 
+#include "core/graph/DenoiserInputs.h"
 #include "core/sampling/VisualPolar.h"
 #include "core/vk/Barriers.h"
 #include "core/vk/ComputePipeline.h"
@@ -63,41 +64,21 @@ void SVGFPass::params(graph::ParamVisitor& v) {
 }
 
 void SVGFPass::reflect(graph::Reflection& r) const {
-    const auto any = vk::Format::eUndefined;
     // Every size follows `color`: the screen, or a Visual-Polar grid (seed 003 P5 runs the
     // denoisers in that space; graphs/koskela_vp_svgf.json).
-    r.input("color", any)
-        .floatOnly()
-        .doc("noisy albedo-demodulated radiance (PathTrace `demodulated`), a = samples (0 = none)");
-    r.input("position", any).sameAs("color").floatOnly().doc("world position, w > 0 on a hit");
-    r.input("normal", any).sameAs("color").floatOnly().doc("shading normal (unit length)");
-    r.input("depth", any)
-        .sameAs("color")
-        .floatOnly()
-        .doc("linear view depth, 0 = miss (GBuffer `depth`)");
-    r.input("albedo", any)
-        .sameAs("color")
-        .floatOnly()
-        .optional()
-        .doc("remodulation albedo; open: 1");
-    r.input("emission", any)
-        .sameAs("color")
-        .floatOnly()
-        .optional()
-        .doc("emission added back after remodulation; open: 0");
-    r.input("motion", any)
-        .sameAs("color")
-        .floatOnly()
-        .optional()
-        .doc("previous pixel - current pixel; open: reproject positions through the camera");
-    r.input("vp")
-        .buffer(sampling::kVisualPolarParamsBytes)
-        .optional()
-        .doc(
-            "VisualPolarWarp `vp` block (with a Visual-Polar `color` and GBuffer VP `motion`): "
-            "history taps, 3x3 fallback, spatial-variance and a-trous taps at each column's own "
-            "phi height, wrapped on phi, the depth gradient too (P5 §3.3); open: screen "
-            "addressing");
+    using graph::DenoiserInput;
+    graph::declareDenoiserInput(r, DenoiserInput::Color);
+    graph::declareDenoiserInput(r, DenoiserInput::Position);
+    graph::declareDenoiserInput(r, DenoiserInput::Normal);
+    graph::declareDenoiserInput(r, DenoiserInput::Depth);
+    graph::declareDenoiserInput(r, DenoiserInput::Albedo);
+    graph::declareDenoiserInput(r, DenoiserInput::Emission);
+    graph::declareDenoiserInput(r, DenoiserInput::Motion);
+    graph::declareDenoiserInput(
+        r, DenoiserInput::VisualPolar,
+        "with a Visual-Polar `color` and GBuffer VP `motion`: history taps, 3x3 fallback, "
+        "spatial-variance and a-trous taps at each column's own phi "
+        "height, wrapped on phi, the depth gradient too (P5 §3.3); open: screen addressing");
 
     const auto rgba32 = vk::Format::eR32G32B32A32Sfloat;
     r.output("filtered", rgba32).sameAs("color").doc("final colour: last level remodulated, a = 1");
@@ -107,9 +88,10 @@ void SVGFPass::reflect(graph::Reflection& r) const {
     r.output("accumulated", rgba32)
         .sameAs("color")
         .doc("temporal accumulation (demodulated); a = history length h");
-    r.output("stats", any)
+    r.output("stats", vk::Format::eUndefined)
         .buffer(kStatCount * sizeof(uint32_t))
         .persistent()
+        .zeroOnReset()
         .doc(
             "uint[5] since the last reset: non-finite colour samples, non-finite geometry/motion "
             "pixels, rejected reprojections, spatial-variance pixels, negative-variance clamps");
@@ -146,8 +128,7 @@ void SVGFPass::validate(const graph::ValidateContext& ctx) const {
     if (mFeedbackTap > mIterations)
         ctx.fail("feedbackTap", "must be at most `iterations` (" + std::to_string(mIterations) +
                                     "): there is no level " + std::to_string(mFeedbackTap));
-    if (ctx.connected("vp") && !ctx.connected("motion"))
-        ctx.fail("vp", "a Visual-Polar image needs the input 'motion' (GBuffer VP motion)");
+    graph::validateVisualPolarInputs(ctx);
 }
 
 void SVGFPass::compile(graph::CompileContext& ctx) {
@@ -167,14 +148,7 @@ void SVGFPass::execute(graph::ExecuteContext& ctx) {
     const auto& out = ctx.image("filtered");
     const glm::ivec2 size(int(out.width()), int(out.height()));
 
-    if (!history) {
-        // Counters restart with the history (cumulative since the last reset or cut).
-        cmd.fillBuffer(ctx.buffer("stats").buffer(), 0, VK_WHOLE_SIZE, 0u);
-        gpu::memoryBarrier(
-            cmd, vk::PipelineStageFlagBits2::eTransfer, vk::AccessFlagBits2::eTransferWrite,
-            vk::PipelineStageFlagBits2::eComputeShader,
-            vk::AccessFlagBits2::eShaderStorageRead | vk::AccessFlagBits2::eShaderStorageWrite);
-    }
+    // `stats` restarts with the history: the graph zeroes it (zeroOnReset).
 
     // §4.1 temporal accumulation.
     ctx.bindFields(*mReproject);

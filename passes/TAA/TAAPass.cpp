@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/graph/DenoiserInputs.h"
 #include "core/sampling/VisualPolar.h"
 #include "core/scene/Camera.h"
 #include "core/vk/ComputePipeline.h"
@@ -31,17 +32,15 @@ void TAAPass::reflect(graph::Reflection& r) const {
     r.input("color").floatOnly().doc(
         "the frame to antialias (rgba32f/16f, jittered when the run jitters); rgb filtered, a "
         "passed through");
+    // Not the shared Motion: TAA has no positions, so an open `motion` means a still camera.
     r.input("motion").optional().floatOnly().sameAs("color").doc(
         "GBuffer motion: previous pixel - current pixel, jitter-free; open = still camera");
-    r.input("vp")
-        .buffer(sampling::kVisualPolarParamsBytes)
-        .optional()
-        .doc(
-            "VisualPolarWarp `vp` block (with a Visual-Polar `color` and GBuffer VP `motion`): 3x3 "
-            "neighbours and the history taps (bilinear or Catmull-Rom) wrap on phi at each "
-            "column's "
-            "own phi height, the previous frame's for the history (P5 §3.3); open: screen "
-            "addressing");
+    graph::declareDenoiserInput(
+        r, graph::DenoiserInput::VisualPolar,
+        "with a Visual-Polar `color` and GBuffer VP `motion`: 3x3 neighbours and the history taps "
+        "(bilinear or Catmull-Rom) wrap on phi at each "
+        "column's own phi height, the previous frame's for the history (P5 §3.3); open: screen "
+        "addressing");
     r.output("result", vk::Format::eR32G32B32A32Sfloat)
         .sameAs("color")
         .history(1)

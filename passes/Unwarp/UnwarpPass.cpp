@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/graph/DenoiserInputs.h"
 #include "core/sampling/VisualPolar.h"
 #include "core/vk/Barriers.h"
 #include "core/vk/ComputePipeline.h"
@@ -41,9 +42,8 @@ void UnwarpPass::params(graph::ParamVisitor& v) {
 
 void UnwarpPass::reflect(graph::Reflection& r) const {
     r.input("color").floatOnly().doc("the Visual-Polar image (eye halves side by side)");
-    r.input("vp")
-        .buffer(sampling::kVisualPolarParamsBytes)
-        .doc("VisualPolarWarp's `vp` block (the mapping)");
+    graph::declareDenoiserInput(r, graph::DenoiserInput::VisualPolar, "`color` is in this mapping")
+        .required();
     r.output("result", vk::Format::eR32G32B32A32Sfloat)
         .screen()
         .doc("the screen image (finite everywhere; a = the VP alpha, interpolated)");
@@ -58,6 +58,12 @@ void UnwarpPass::reflect(graph::Reflection& r) const {
         .doc(
             "per pixel: rho, t, mip level and the blur's sigma (P5 §3.4-3.5), kept while the "
             "mapping key does not change");
+    r.internal("rebuild_args", vk::Format::eUndefined)
+        .buffer(kRebuildArgsBytes)
+        .indirect()
+        .doc(
+            "unwarp_rebuild block: the group counts of the lookup rebuild's indirect dispatches, "
+            "0 when the mapping key is unchanged");
     r.internal("lookup_key", vk::Format::eUndefined)
         .buffer(kKeyBytes)
         .persistent()
@@ -73,10 +79,6 @@ void UnwarpPass::compile(graph::CompileContext& ctx) {
     mBlurRows = ctx.createPipeline("visual_polar/foveated_blur.comp");
     mBlurColumns =
         ctx.createPipeline("visual_polar/foveated_blur.comp", {{"FOVEATED_BLUR_VERTICAL", "1"}});
-    mRebuildArgs = std::make_unique<gpu::Buffer>(
-        ctx.gpu(), kRebuildArgsBytes,
-        vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eIndirectBuffer, false,
-        name() + ".rebuild");
     mKeyStored = false;  // a new lookup_key buffer holds no key yet
 }
 
@@ -96,8 +98,9 @@ void UnwarpPass::execute(graph::ExecuteContext& ctx) {
     const float sigmaMax = mBlurSigma * float(out.height()) / 1440.0f;
     const auto groups = mLookup->groupCount(out.width(), out.height());
     const auto mipGroups = mMips->groupCount(vpImage.width(), (vpImage.height() + 1) / 2);
+    const gpu::Buffer& rebuildArgs = ctx.buffer("rebuild_args");
     ctx.bindFields(*mLookup);
-    mLookup->bind("unwarp_rebuild", *mRebuildArgs)
+    mLookup->bind("unwarp_rebuild", rebuildArgs)
         .set("levels", uint32_t(levels))
         .set("sigmaMax", sigmaMax)
         .set("blurDegrees", mBlurDegrees)
@@ -109,7 +112,7 @@ void UnwarpPass::execute(graph::ExecuteContext& ctx) {
     mLookup->dispatch(ctx.cmd(), 1, 1);
     gpu::computeToIndirectBarrier(ctx.cmd());
     mLookup->set("mode", 1u);
-    mLookup->dispatchIndirect(ctx.cmd(), *mRebuildArgs);
+    mLookup->dispatchIndirect(ctx.cmd(), rebuildArgs);
     gpu::computeToComputeBarrier(ctx.cmd());
     // The group counts of the fine mapping and of the phi mips, from the boxes of pixels with
     // L > 0 the rebuild grew (or kept).
@@ -122,7 +125,7 @@ void UnwarpPass::execute(graph::ExecuteContext& ctx) {
     ctx.bindFields(*mMips);
     for (int level = 1; level < levels; ++level) {
         mMips->set("level", uint32_t(level));
-        mMips->dispatchIndirect(ctx.cmd(), *mRebuildArgs, kArgsStride * uint64_t(level));
+        mMips->dispatchIndirect(ctx.cmd(), rebuildArgs, kArgsStride * uint64_t(level));
         gpu::computeToComputeBarrier(ctx.cmd());
     }
     // P5 §3.4's trilinear fetch only where a pixel covers more than one phi row (L > 0: the fovea
@@ -133,10 +136,10 @@ void UnwarpPass::execute(graph::ExecuteContext& ctx) {
     mMap->dispatch(ctx.cmd(), out.width(), out.height());
     gpu::computeToComputeBarrier(ctx.cmd());
     ctx.bindFields(*mMapFine);
-    mMapFine->bind("unwarp_rebuild", *mRebuildArgs)
+    mMapFine->bind("unwarp_rebuild", rebuildArgs)
         .set("levels", uint32_t(levels))
         .set("toResult", uint32_t(!mBlur));
-    mMapFine->dispatchIndirect(ctx.cmd(), *mRebuildArgs, kFineArgsOffset);
+    mMapFine->dispatchIndirect(ctx.cmd(), rebuildArgs, kFineArgsOffset);
     mKeyStored = true;
     if (!mBlur) return;
     // Two separable passes: rows into blur_tmp, then columns into result.

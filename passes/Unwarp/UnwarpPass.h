@@ -25,7 +25,6 @@ private:
     bool mCache = true;
     bool mKeyStored = false;  // lookup_key holds the key of the last rebuild
     std::unique_ptr<gpu::ComputePipeline> mMips, mLookup, mMap, mMapFine, mBlurRows, mBlurColumns;
-    std::unique_ptr<gpu::Buffer> mRebuildArgs;  // the lookup rebuild's indirect group counts
 };
 
 }  // namespace fovea::passes

@@ -80,7 +80,7 @@ protected:
         const auto* pass =
             dynamic_cast<const ATrousNHPass*>(g->plan().nodes[g->plan().findNode("dn")].pass.get());
         r.variant = pass->variant();
-        r.tiles = pass->tileLists()->downloadAs<uint32_t>(ctx());
+        r.tiles = g->buffer("dn.tiles").downloadAs<uint32_t>(ctx());
         r.tileCount = pass->tileCount();
         return r;
     }

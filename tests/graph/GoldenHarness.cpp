@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/graph/GraphDesc.h"
 #include "core/graph/PassRegistry.h"
@@ -442,6 +443,14 @@ std::vector<RenderedOutput> renderGraphOutputs(gpu::Context& ctx, const GoldenSp
     }
     std::vector<RenderedOutput> outputs;
     const auto& plan = graph.plan();
+    // The pass contract: every pass's GPU memory is a graph field the plan lists. A golden of a
+    // pass that allocates its own would still match, so this is checked here, for every golden.
+    for (size_t n = 0; n < plan.nodes.size(); ++n)
+        if (const uint64_t own = graph.records()[n].allocationsOutsidePlan; own != 0)
+            throw std::runtime_error(
+                "pass '" + plan.nodes[n].name + "' (" + plan.nodes[n].type + ") made " +
+                std::to_string(own) +
+                " device allocations outside the plan (declare buffer fields)");
     for (const auto& out : desc.outputs) {
         if (!plan.nodes[plan.findNode(out.source.pass)].alive) continue;  // culled: no image
         const gpu::Image& image = graph.image(out.source.str());

@@ -336,9 +336,7 @@ TEST_F(PathTraceMisTest, RayCounterCountsTheLastVertexRay) {
         const LoadedScene& s = sceneNamed("builtin:cornell");
         g->setCamera(scene::makeFrameCamera(s.camera, 16, 16, {}, 0, nullptr, nullptr));
         g->runFrame();
-        const auto& pt = dynamic_cast<const passes::PathTracePass&>(
-            *g->plan().nodes.at(g->plan().findNode("pt")).pass);
-        auto c = pt.rayCounts(ctx());
+        auto c = passes::PathTracePass::rayCounts(ctx(), g->buffer("pt.rays"));
         if (!mis) {
             EXPECT_EQ(c[4], 0u);
             indirectWithout = c[2];

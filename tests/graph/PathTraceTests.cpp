@@ -396,9 +396,9 @@ TEST_F(PathTraceTest, DISABLED_BenchmarkMraysPerSecond) {
                            1, 640, 360);
         run(*g, scene, 1);
         const auto& pt = dynamic_cast<const passes::PathTracePass&>(pass(*g, "pt"));
-        auto before = pt.rayCounts(ctx());
+        auto before = passes::PathTracePass::rayCounts(ctx(), g->buffer("pt.rays"));
         run(*g, scene, frames);
-        auto after = pt.rayCounts(ctx());
+        auto after = passes::PathTracePass::rayCounts(ctx(), g->buffer("pt.rays"));
         const auto& rec = g->records().at(g->plan().findNode("pt"));
         double ms = 0;
         for (size_t f = rec.gpuMs.size() - frames; f < rec.gpuMs.size(); ++f) ms += rec.gpuMs[f];
