@@ -215,126 +215,115 @@ void addViewProbe(nlohmann::json& report, const RunScene& runScene,
 
 }  // namespace
 
-int runCommand(const RunOptions& o) {
-    graph::GraphDesc desc = loadGraph(o.graph);
-    auto [width, height] = renderSize(o.graph, desc);
-    if (o.frames < 0) throw InputError("--frames", "", "must be at least 1");
-    uint32_t frames = o.frames > 0 ? uint32_t(o.frames) : desc.defaults.frames.value_or(1);
-    uint64_t seed = o.seed >= 0 ? uint64_t(o.seed) : desc.defaults.seed.value_or(0);
-    // The device outlives the scene's GPU buffers (declared first, destroyed last), but is
-    // created only after every input was checked: bad input fails fast, without a device.
-    std::optional<gpu::Context> device;
-    RunScene scene(o.scene, desc);
-    std::set<uint32_t> save = parseSaveFrames(o.saveFrames, frames);
-    scene.checkRenderSize(width, height);
-    // The graph's free-text name must not pick a folder outside out/ ("../x", "/abs").
-    fs::path outDir = o.out.empty() ? fs::path("out") / safeFolderName(desc.name) : fs::path(o.out);
-    checkOutputDir(outDir, "--out", o.overwrite);
-    if (!o.referenceOutput.empty() && o.reference.empty())
-        throw InputError("--reference-output", "", "needs --reference");
-    if (!o.referenceNoise.empty() && o.reference.empty())
-        throw InputError("--reference-noise", "", "needs --reference");
-    const FlipChoice flip = flipChoiceOf(o);
-    std::optional<ReferenceSource> reference, referenceNoise;
-    if (!o.reference.empty()) {
-        reference.emplace(o.reference, "--reference", width, height);
-        reference->requireFrames(0, frames - 1);
-    }
-    if (!o.referenceNoise.empty()) {
-        referenceNoise.emplace(o.referenceNoise, "--reference-noise", width, height);
-        referenceNoise->requireFrames(0, frames - 1);
-    }
-    const std::optional<eval::LayerRadii> layers = foveationRadiiOf(desc);
+namespace {
 
-    gpu::Context& ctx = openDevice(device, o.device, o.validation, o.quiet);
-    uploadScene(ctx, scene, o.quiet);
-    GraphRunner runner(ctx, scene, desc,
-                       {width, height, seed, !o.graph.noAliasing, o.fixedCameraFrame});
-    // Reading the compared output back costs a transfer per frame: only with --reference.
-    const std::string compared =
-        reference ? selectComparedOutput(runner, o.referenceOutput, "--reference-output") : "";
-    if (reference) reference->choose(compared);
-    if (referenceNoise) referenceNoise->choose(compared);
-    FrameErrors errors, floor;
-    if (layers) {
-        errors.setLayers(*layers);
-        floor.setLayers(*layers);
-    }
-    if (reference) {
-        errors.setFlip(flip, runner.displayEncoded(compared));
-        floor.setFlip(flip, runner.displayEncoded(compared));
-    }
-    const OutputFolder folder(outDir, "--out", o.overwrite);
-    InterruptGuard interrupt;
-
-    ReportInputs report = runner.reportBase(o.graph.graph, frames);
-    Progress progress(frames, o.samplesPerFrame, o.quiet);
-    uint32_t framesDone = 0;
-    // Outputs of the last saved frame that are black in every pixel (RGB): a camera that sees no
-    // geometry or no light gives such an image with exit 0, which must not pass unnoticed.
-    std::map<std::string, uint32_t> blackOutputs;
-    for (uint32_t f = 0; f < frames && !interrupt.signal(); ++f) {
-        graph::FrameTiming t = runner.runFrame();
-        report.frameGpuMs.push_back(t.gpuMs);
-        report.frameCpuMs.push_back(t.recordCpuMs);
-        report.overheadCpuMs.push_back(t.recordCpuMs - t.passCpuMs);
-        if (reference)
-            errors.add(f, runner.download(compared), compared + " frame " + std::to_string(f),
-                       reference->forFrame(f), reference->fileFor(f).string(),
-                       &runner.graph().camera());
-        if (referenceNoise)
-            floor.add(f, referenceNoise->forFrame(f), referenceNoise->fileFor(f).string(),
-                      reference->forFrame(f), reference->fileFor(f).string(),
-                      &runner.graph().camera());
-        if (save.count(f)) {
-            for (const auto& out : desc.outputs) {
-                const std::string name = out.source.str();
-                if (!runner.alive(name)) continue;  // culled
-                std::string base = name;
-                if (frames > 1) {
-                    char suffix[32];
-                    std::snprintf(suffix, sizeof suffix, ".frame%04u", f);
-                    base += suffix;
-                }
-                image::ImageRGBA img = runner.download(name);
-                folder.write(base + ".exr",
-                             [&](const fs::path& path) { image::writeExr(path, img); });
-                // An 8-bit UNORM output (e.g. Tonemap's) is display-encoded already.
-                const bool displayEncoded =
-                    gpu::formatIsUnorm8(runner.graph().image(name).format());
-                folder.write(base + ".png", [&](const fs::path& path) {
-                    image::writePng(
-                        path, img,
-                        displayEncoded ? image::PngEncoding::AsIs : image::PngEncoding::Srgb);
-                });
-                report.outputs.push_back(base + ".exr");
-                report.outputs.push_back(base + ".png");
-                if (allBlack(img))
-                    blackOutputs[name] = f;
-                else
-                    blackOutputs.erase(name);
-            }
+// `run --reference` (and --reference-noise): the references, the compared output and the
+// per-frame errors against each, as one step of the run.
+class ReferenceComparison {
+public:
+    // Checks the options and the reference files (every frame present, right size) before
+    // any device is opened.
+    ReferenceComparison(const RunOptions& o, uint32_t width, uint32_t height, uint32_t frames)
+        : mOptions(o) {
+        if (!o.referenceOutput.empty() && o.reference.empty())
+            throw InputError("--reference-output", "", "needs --reference");
+        if (!o.referenceNoise.empty() && o.reference.empty())
+            throw InputError("--reference-noise", "", "needs --reference");
+        mFlip = flipChoiceOf(o);
+        if (!o.reference.empty()) {
+            mTruth.emplace(o.reference, "--reference", width, height);
+            mTruth->requireFrames(0, frames - 1);
         }
-        progress.update(f + 1);
-        framesDone = f + 1;
+        if (!o.referenceNoise.empty()) {
+            mNoise.emplace(o.referenceNoise, "--reference-noise", width, height);
+            mNoise->requireFrames(0, frames - 1);
+        }
     }
-    progress.finish();
-    checkValidation(ctx);
-    if (reference) {
-        report.reference = errors.json();
-        report.reference["path"] = o.reference;
-        report.reference["mode"] = reference->perFrame() ? "per-frame" : "single";
-        report.reference["output"] = compared;
-        if (referenceNoise) {
-            report.reference["noise_floor"] = floor.json();
-            report.reference["noise_floor"]["path"] = o.referenceNoise;
+    // Picks the compared output of the built graph; errors per foveation layer when it has some.
+    void attach(GraphRunner& runner, const std::optional<eval::LayerRadii>& layers) {
+        if (layers) {
+            mErrors.setLayers(*layers);
+            mFloor.setLayers(*layers);
+        }
+        if (!mTruth) return;  // reading the output back costs a transfer: only with --reference
+        mCompared = selectComparedOutput(runner, mOptions.referenceOutput, "--reference-output");
+        mTruth->choose(mCompared);
+        if (mNoise) mNoise->choose(mCompared);
+        mErrors.setFlip(mFlip, runner.displayEncoded(mCompared));
+        mFloor.setFlip(mFlip, runner.displayEncoded(mCompared));
+    }
+    void add(uint32_t f, GraphRunner& runner) {
+        if (!mTruth) return;
+        const auto* camera = &runner.graph().camera();
+        mErrors.add(f, runner.download(mCompared), mCompared + " frame " + std::to_string(f),
+                    mTruth->forFrame(f), mTruth->fileFor(f).string(), camera);
+        if (mNoise)
+            mFloor.add(f, mNoise->forFrame(f), mNoise->fileFor(f).string(), mTruth->forFrame(f),
+                       mTruth->fileFor(f).string(), camera);
+    }
+    // report.json "reference" (null without --reference).
+    nlohmann::json json() const {
+        if (!mTruth) return nullptr;
+        nlohmann::json j = mErrors.json();
+        j["path"] = mOptions.reference;
+        j["mode"] = mTruth->perFrame() ? "per-frame" : "single";
+        j["output"] = mCompared;
+        if (mNoise) {
+            j["noise_floor"] = mFloor.json();
+            j["noise_floor"]["path"] = mOptions.referenceNoise;
             // docs/report-format.md: the error against the truth once the reference's own
             // noise (half the floor's MSE) is taken out; 0 = within the reference's noise.
-            report.reference["mean"]["rmse_noise_corrected"] =
-                eval::noiseCorrectedRmse(errors.mean().mse, floor.mean().mse);
+            j["mean"]["rmse_noise_corrected"] =
+                eval::noiseCorrectedRmse(mErrors.mean().mse, mFloor.mean().mse);
         }
+        return j;
     }
-    // Written last: its presence and "finished" say whether the folder is complete.
+
+private:
+    const RunOptions& mOptions;
+    FlipChoice mFlip{};
+    std::optional<ReferenceSource> mTruth, mNoise;
+    std::string mCompared;
+    FrameErrors mErrors, mFloor;
+};
+
+// Writes frame f's marked outputs (EXR + PNG) and keeps, per output, whether the last saved
+// frame was black in every pixel: a camera that sees no geometry or no light gives such an
+// image with exit 0, which must not pass unnoticed.
+void saveFrameOutputs(const OutputFolder& folder, GraphRunner& runner, const graph::GraphDesc& desc,
+                      uint32_t f, uint32_t frames, ReportInputs& report,
+                      std::map<std::string, uint32_t>& blackOutputs) {
+    for (const auto& out : desc.outputs) {
+        const std::string name = out.source.str();
+        if (!runner.alive(name)) continue;  // culled
+        std::string base = name;
+        if (frames > 1) {
+            char suffix[32];
+            std::snprintf(suffix, sizeof suffix, ".frame%04u", f);
+            base += suffix;
+        }
+        image::ImageRGBA img = runner.download(name);
+        folder.write(base + ".exr", [&](const fs::path& path) { image::writeExr(path, img); });
+        // An 8-bit UNORM output (e.g. Tonemap's) is display-encoded already.
+        const bool displayEncoded = gpu::formatIsUnorm8(runner.graph().image(name).format());
+        folder.write(base + ".png", [&](const fs::path& path) {
+            image::writePng(path, img,
+                            displayEncoded ? image::PngEncoding::AsIs : image::PngEncoding::Srgb);
+        });
+        report.outputs.push_back(base + ".exr");
+        report.outputs.push_back(base + ".png");
+        if (allBlack(img))
+            blackOutputs[name] = f;
+        else
+            blackOutputs.erase(name);
+    }
+}
+
+// report.json with the run's warnings, written last: its presence and "finished" say whether
+// the folder is complete.
+void writeRunReport(const OutputFolder& folder, GraphRunner& runner, const RunScene& scene,
+                    const ReportInputs& report, const std::map<std::string, uint32_t>& blackOutputs,
+                    uint32_t framesDone, uint32_t frames) {
     nlohmann::json json = buildReport(runner.graph(), report);
     json["warnings"] = nlohmann::json::array();
     for (const auto& [name, frame] : blackOutputs) {
@@ -348,6 +337,58 @@ int runCommand(const RunOptions& o) {
     json["finished"] = framesDone == frames;
     json["frames_run"] = framesDone;
     folder.writeText("report.json", json.dump(2) + "\n");
+}
+
+}  // namespace
+
+int runCommand(const RunOptions& o) {
+    // 1. Every input is checked before a device is opened: bad input fails fast, without one.
+    graph::GraphDesc desc = loadGraph(o.graph);
+    auto [width, height] = renderSize(o.graph, desc);
+    if (o.frames < 0) throw InputError("--frames", "", "must be at least 1");
+    const uint32_t frames = o.frames > 0 ? uint32_t(o.frames) : desc.defaults.frames.value_or(1);
+    const uint64_t seed = o.seed >= 0 ? uint64_t(o.seed) : desc.defaults.seed.value_or(0);
+    // The device outlives the scene's GPU buffers (declared first, destroyed last).
+    std::optional<gpu::Context> device;
+    RunScene scene(o.scene, desc);
+    const std::set<uint32_t> save = parseSaveFrames(o.saveFrames, frames);
+    scene.checkRenderSize(width, height);
+    // The graph's free-text name must not pick a folder outside out/ ("../x", "/abs").
+    const fs::path outDir =
+        o.out.empty() ? fs::path("out") / safeFolderName(desc.name) : fs::path(o.out);
+    checkOutputDir(outDir, "--out", o.overwrite);
+    ReferenceComparison comparison(o, width, height, frames);
+
+    // 2. Device, scene and graph.
+    gpu::Context& ctx = openDevice(device, o.device, o.validation, o.quiet);
+    uploadScene(ctx, scene, o.quiet);
+    GraphRunner runner(ctx, scene, desc,
+                       {width, height, seed, !o.graph.noAliasing, o.fixedCameraFrame});
+    comparison.attach(runner, foveationRadiiOf(desc));
+    const OutputFolder folder(outDir, "--out", o.overwrite);
+    InterruptGuard interrupt;
+
+    // 3. The frames: timings, errors against the references, saved outputs.
+    ReportInputs report = runner.reportBase(o.graph.graph, frames);
+    Progress progress(frames, o.samplesPerFrame, o.quiet);
+    uint32_t framesDone = 0;
+    std::map<std::string, uint32_t> blackOutputs;
+    for (uint32_t f = 0; f < frames && !interrupt.signal(); ++f) {
+        graph::FrameTiming t = runner.runFrame();
+        report.frameGpuMs.push_back(t.gpuMs);
+        report.frameCpuMs.push_back(t.recordCpuMs);
+        report.overheadCpuMs.push_back(t.recordCpuMs - t.passCpuMs);
+        comparison.add(f, runner);
+        if (save.count(f)) saveFrameOutputs(folder, runner, desc, f, frames, report, blackOutputs);
+        progress.update(f + 1);
+        framesDone = f + 1;
+    }
+    progress.finish();
+    checkValidation(ctx);
+
+    // 4. The report, last.
+    report.reference = comparison.json();
+    writeRunReport(folder, runner, scene, report, blackOutputs, framesDone, frames);
     if (interrupt.signal()) {
         std::cerr << "error: interrupted (signal " << interrupt.signal() << ") after " << framesDone
                   << " of " << frames << " frames; " << (outDir / "report.json").string()
