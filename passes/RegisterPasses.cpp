@@ -16,7 +16,8 @@
 #include "passes/ImageSource/ImageSourcePass.h"
 #include "passes/PathTrace/PathTracePass.h"
 #include "passes/PreviewSamples/PreviewSamplesPass.h"
-#include "passes/RecurrentBlur/RecurrentBlurPass.h"
+#include "passes/RecurrentBlur/RecurrentBlurSpatialPass.h"
+#include "passes/RecurrentBlur/RecurrentBlurTemporalPass.h"
 #include "passes/Remodulate/RemodulatePass.h"
 #include "passes/SVGF/SVGFPass.h"
 #include "passes/SampleList/SampleListPass.h"
@@ -89,11 +90,18 @@ void registerBuiltinPasses() {
         "BMFR",
         "Blockwise multi-order feature regression (seed 003 P2 §3): accumulation, 32x32 block "
         "QR fit of [1, n, w, w^2], second accumulation, remodulation; numerically guarded."));
-    r.add(info<passes::RecurrentBlurPass>(
-        "RecurrentBlur",
-        "ReBLUR (seed 004), diffuse or specular signal: stage temporal = pre-blur + "
-        "accumulation 1/(1+N); stage spatial = blur shrinking with N + post-blur (recurrent "
-        "history) + stabilization."));
+    r.add(info<passes::RecurrentBlurTemporalPass>(
+        "RecurrentBlurTemporal",
+        "ReBLUR (seed 004) first stage, diffuse or specular signal: pre-blur + accumulation "
+        "1/(1+N) with the firefly suppressor, on RecurrentBlurSpatial's history (delay 1)."));
+    r.add(info<passes::RecurrentBlurSpatialPass>(
+        "RecurrentBlurSpatial",
+        "ReBLUR (seed 004) second stage: blur shrinking with N + post-blur (the recurrent "
+        "history) + luminance stabilization with antilag."));
+    r.retire("RecurrentBlur",
+             "it was split into two types: \"stage\": \"temporal\" is now RecurrentBlurTemporal "
+             "and \"stage\": \"spatial\" RecurrentBlurSpatial (drop the 'stage' parameter; "
+             "docs/passes/RecurrentBlur.md)");
     r.add(info<passes::HistoryFixPass>(
         "HistoryFix",
         "Seed 004: rebuild pixels with few accumulated frames from a mip pyramid (or NRD's "

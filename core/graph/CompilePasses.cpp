@@ -12,6 +12,9 @@ void instantiatePasses(const GraphDesc& desc, const PassRegistry& registry, Comp
     plan.file = desc.file;
     for (size_t i = 0; i < desc.passes.size(); ++i) {
         const PassDesc& p = desc.passes[i];
+        if (const std::string retired = registry.retiredHint(p.type); !retired.empty())
+            throw InputError(desc.file, p.pointer + "/type",
+                             "pass type '" + p.type + "' no longer exists: " + retired);
         if (!registry.find(p.type))
             throw InputError(desc.file, p.pointer + "/type",
                              "unknown pass type '" + p.type + "'" +

@@ -23,6 +23,15 @@ std::vector<std::string> PassRegistry::types() const {
     return out;
 }
 
+void PassRegistry::retire(const std::string& type, std::string replacement) {
+    mRetired[type] = std::move(replacement);
+}
+
+std::string PassRegistry::retiredHint(const std::string& type) const {
+    auto it = mRetired.find(type);
+    return it == mRetired.end() ? std::string() : it->second;
+}
+
 std::string PassRegistry::origin(const std::string& type) const {
     auto it = mTypes.find(type);
     return it == mTypes.end() ? std::string() : it->second.origin;

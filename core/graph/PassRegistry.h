@@ -28,6 +28,10 @@ public:
     std::vector<std::string> types() const;  // sorted
     // "" for a built-in type, else the plugin file that registered it.
     std::string origin(const std::string& type) const;
+    // A type that no longer exists, with what replaces it: a graph naming it gets this hint in
+    // its "unknown pass type" error (e.g. a type split in two).
+    void retire(const std::string& type, std::string replacement);
+    std::string retiredHint(const std::string& type) const;  // "" unless retired
     // Creates a pass with default parameters and its identity set.
     std::unique_ptr<Pass> create(const std::string& type, const std::string& name) const;
 
@@ -37,6 +41,7 @@ private:
         std::string origin;
     };
     std::map<std::string, Entry> mTypes;
+    std::map<std::string, std::string> mRetired;
 };
 
 PassRegistry& passRegistry();

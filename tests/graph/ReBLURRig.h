@@ -15,7 +15,8 @@
 #include "core/graph/RenderGraph.h"
 #include "core/vk/Resources.h"
 #include "passes/HistoryFix/HistoryFixPass.h"
-#include "passes/RecurrentBlur/RecurrentBlurPass.h"
+#include "passes/RecurrentBlur/RecurrentBlurSpatialPass.h"
+#include "passes/RecurrentBlur/RecurrentBlurTemporalPass.h"
 #include "tests/passes/FeedPass.h"
 
 namespace fovea::test {
@@ -36,7 +37,10 @@ inline const graph::PassRegistry& reblurRegistry() {
                                                {"albedo", vk::Format::eR32G32B32A32Sfloat},
                                                {"emission", vk::Format::eR32G32B32A32Sfloat}};
         r.add({"Feed", "", [fields] { return std::make_unique<FeedPass>(fields); }});
-        r.add({"RecurrentBlur", "", [] { return std::make_unique<passes::RecurrentBlurPass>(); }});
+        r.add({"RecurrentBlurTemporal", "",
+               [] { return std::make_unique<passes::RecurrentBlurTemporalPass>(); }});
+        r.add({"RecurrentBlurSpatial", "",
+               [] { return std::make_unique<passes::RecurrentBlurSpatialPass>(); }});
         r.add({"HistoryFix", "", [] { return std::make_unique<passes::HistoryFixPass>(); }});
         return r;
     }();
@@ -121,10 +125,10 @@ public:
                     { "from": "rbs.history", "to": "rbt.history", "delay": 1 }, )";
         std::string passes =
             R"({ "name": "feed", "type": "Feed" },
-               { "name": "rbt", "type": "RecurrentBlur", "params": )" +
-            withStage(temporalParams, "temporal") + R"( },
-               { "name": "rbs", "type": "RecurrentBlur", "params": )" +
-            withStage(spatialParams, "spatial") + " }";
+               { "name": "rbt", "type": "RecurrentBlurTemporal", "params": )" +
+            pixelSizes(temporalParams) + R"( },
+               { "name": "rbs", "type": "RecurrentBlurSpatial", "params": )" +
+            pixelSizes(spatialParams) + " }";
         std::string outputs =
             R"("rbt.preblurred", "rbt.accumulated", "rbt.hit", "rbt.radius", "rbs.blurred", )"
             R"("rbs.history", "rbs.result", "rbs.radius")";
@@ -181,10 +185,6 @@ public:
     }
 
 private:
-    // {"a": 1} -> {"stage": "x", "a": 1}
-    static std::string withStage(std::string params, const char* stage) {
-        return withKey(pixelSizes(params), std::string(R"( "stage": ")") + stage + "\"");
-    }
     static std::string withKey(std::string params, const std::string& key) {
         const bool empty = params.find_first_not_of(" {}") == std::string::npos;
         if (empty) return "{" + key + " }";

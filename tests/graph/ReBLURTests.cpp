@@ -369,12 +369,13 @@ TEST_F(ReBLURTest, LightSwitchLag) {
     EXPECT_GT(lag[3], 0) << "the defaults reach 90 % within 400 frames";
 }
 
-// A temporal stage without its recurrent input is rejected at compile (exit 2 in the CLI) with a
-// pointer to the stage parameter, not run as an accumulation that never has history.
+// A temporal stage without its recurrent input is rejected at compile (exit 2 in the CLI) with the
+// pass's pointer (`history` is a required input), not run as an accumulation that never has
+// history.
 TEST_F(ReBLURTest, TemporalStageWithoutHistoryEdgeIsAnInputError) {
     const std::string text = R"({ "version": 1, "name": "x", "passes": [
         { "name": "feed", "type": "Feed" },
-        { "name": "rbt", "type": "RecurrentBlur" } ], "edges": [
+        { "name": "rbt", "type": "RecurrentBlurTemporal" } ], "edges": [
         { "from": "feed.radiance", "to": "rbt.radiance" },
         { "from": "feed.hit_distance", "to": "rbt.hit_distance" },
         { "from": "feed.normal", "to": "rbt.normal" },
@@ -387,8 +388,9 @@ TEST_F(ReBLURTest, TemporalStageWithoutHistoryEdgeIsAnInputError) {
         g.build(graph::parseGraphText(text, "x.json"), o);
         FAIL() << "no error";
     } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("/passes/1/params/stage"), std::string::npos)
-            << e.what();
+        const std::string what = e.what();
+        EXPECT_NE(what.find("/passes/1"), std::string::npos) << what;
+        EXPECT_NE(what.find("'rbt.history' has no edge"), std::string::npos) << what;
     }
 }
 
