@@ -1,7 +1,5 @@
 #include "core/vk/Context.h"
 
-#include "core/util/InstallPaths.h"
-
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
@@ -10,6 +8,7 @@
 #include <optional>
 
 #include "core/util/Error.h"
+#include "core/util/InstallPaths.h"
 #include "core/vk/ShaderCompiler.h"
 
 namespace fovea::gpu {
@@ -195,115 +194,22 @@ vk::raii::Sampler makeSampler(const vk::raii::Device& device, vk::Filter filter)
                                      });
 }
 
-}  // namespace
+// The device create info with every feature struct fovea enables chained behind it.
+using DeviceCreateChain =
+    vk::StructureChain<vk::DeviceCreateInfo, vk::PhysicalDeviceFeatures2,
+                       vk::PhysicalDeviceVulkan11Features, vk::PhysicalDeviceVulkan12Features,
+                       vk::PhysicalDeviceVulkan13Features>;
 
-Context::Context(const ContextOptions& options)
-    : mSink(std::make_unique<MessageSink>()), mVkContext(makeLoaderContext()) {
-    const std::optional<bool> envValidation = envSwitch("FOVEA_VALIDATION");
-    const std::optional<bool> envSync = envSwitch("FOVEA_SYNC_VALIDATION");
-    mValidation = options.validation || options.syncValidation || envValidation.value_or(false) ||
-                  envSync.value_or(false);
-    mSyncValidation = mValidation && envSync.value_or(true);
-
-    // --- instance ---
-    std::vector<const char*> layers;
-    std::vector<const char*> extensions;
-    auto instanceExtensions = mVkContext.enumerateInstanceExtensionProperties();
-    mDebugUtils = hasExtension(instanceExtensions, VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
-    if (mDebugUtils) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
-    for (const std::string& name : options.instanceExtensions) {
-        if (!hasExtension(instanceExtensions, name.c_str()))
-            throw RuntimeError("the Vulkan instance lacks extension " + name +
-                               " (needed to present to a window)");
-        extensions.push_back(name.c_str());
-    }
-    if (mValidation) {
-        auto available = mVkContext.enumerateInstanceLayerProperties();
-        bool found =
-            std::any_of(available.begin(), available.end(), [](const vk::LayerProperties& l) {
-                return std::string_view(l.layerName.data()) == kValidationLayer;
-            });
-        if (!found || !mDebugUtils) {
-            // A missing layer should not stop a render; tests notice via validationEnabled().
-            std::cerr << "fovea: warning: validation requested but " << kValidationLayer
-                      << " is not installed (apt install vulkan-validationlayers); continuing "
-                         "without validation\n";
-            mValidation = mSyncValidation = false;
-        } else {
-            layers.push_back(kValidationLayer);
-            auto layerExtensions =
-                mVkContext.enumerateInstanceExtensionProperties(std::string(kValidationLayer));
-            if (mSyncValidation &&
-                hasExtension(layerExtensions, VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME))
-                extensions.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
-            else
-                mSyncValidation = false;
-        }
-    }
-
-    vk::ApplicationInfo appInfo{.pApplicationName = "fovea",
-                                .applicationVersion = VK_MAKE_API_VERSION(0, 0, 1, 0),
-                                .pEngineName = "fovea",
-                                .engineVersion = VK_MAKE_API_VERSION(0, 0, 1, 0),
-                                .apiVersion = kApiVersion};
-    vk::DebugUtilsMessengerCreateInfoEXT messengerInfo{
-        .messageSeverity = vk::DebugUtilsMessageSeverityFlagBitsEXT::eWarning |
-                           vk::DebugUtilsMessageSeverityFlagBitsEXT::eError,
-        .messageType = vk::DebugUtilsMessageTypeFlagBitsEXT::eGeneral |
-                       vk::DebugUtilsMessageTypeFlagBitsEXT::eValidation,
-        .pfnUserCallback = &Context::onDebugMessage,
-        .pUserData = mSink.get()};
-    vk::ValidationFeatureEnableEXT syncFeature =
-        vk::ValidationFeatureEnableEXT::eSynchronizationValidation;
-    vk::ValidationFeaturesEXT validationFeatures{.enabledValidationFeatureCount = 1,
-                                                 .pEnabledValidationFeatures = &syncFeature};
-    vk::InstanceCreateInfo instanceInfo{
-        .pApplicationInfo = &appInfo,
-        .enabledLayerCount = static_cast<uint32_t>(layers.size()),
-        .ppEnabledLayerNames = layers.data(),
-        .enabledExtensionCount = static_cast<uint32_t>(extensions.size()),
-        .ppEnabledExtensionNames = extensions.data()};
-    if (mValidation) {
-        // Chained into instance creation too, so messages from vkCreate/DestroyInstance count.
-        // The messenger info goes last: it is reused below, where its pNext must be null.
-        instanceInfo.pNext = &messengerInfo;
-        if (mSyncValidation) {
-            instanceInfo.pNext = &validationFeatures;
-            validationFeatures.pNext = &messengerInfo;
-        }
-    }
-    try {
-        mInstance = vk::raii::Instance(mVkContext, instanceInfo);
-    } catch (const vk::SystemError& e) {
-        throw RuntimeError(std::string("cannot create a Vulkan 1.3 instance: ") + e.what());
-    }
-    if (mValidation) mMessenger = vk::raii::DebugUtilsMessengerEXT(mInstance, messengerInfo);
-
-    // --- device ---
-    mPhysicalDevice = selectDevice(mInstance, options.device);
-    mProperties = mPhysicalDevice.getProperties();
-    auto props2 =
-        mPhysicalDevice
-            .getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceDriverProperties>();
-    const auto& driver = props2.get<vk::PhysicalDeviceDriverProperties>();
-    mDriverName = driver.driverName.data();
-    mDriverInfo = driver.driverInfo.data();
-    mQueueFamily = *pickQueueFamily(mPhysicalDevice);
-
+// Only features that are both useful to passes and supported; sync2 and maintenance4 are
+// required by device selection.
+void enableSupportedFeatures(const vk::raii::PhysicalDevice& pd, DeviceCreateChain& chain) {
     auto supported =
-        mPhysicalDevice
-            .getFeatures2<vk::PhysicalDeviceFeatures2, vk::PhysicalDeviceVulkan11Features,
-                          vk::PhysicalDeviceVulkan12Features, vk::PhysicalDeviceVulkan13Features>();
+        pd.getFeatures2<vk::PhysicalDeviceFeatures2, vk::PhysicalDeviceVulkan11Features,
+                        vk::PhysicalDeviceVulkan12Features, vk::PhysicalDeviceVulkan13Features>();
     const auto& s10 = supported.get<vk::PhysicalDeviceFeatures2>().features;
     const auto& s11 = supported.get<vk::PhysicalDeviceVulkan11Features>();
     const auto& s12 = supported.get<vk::PhysicalDeviceVulkan12Features>();
 
-    // Only features that are both useful to passes and supported; sync2 and maintenance4 are
-    // required by device selection.
-    vk::StructureChain<vk::DeviceCreateInfo, vk::PhysicalDeviceFeatures2,
-                       vk::PhysicalDeviceVulkan11Features, vk::PhysicalDeviceVulkan12Features,
-                       vk::PhysicalDeviceVulkan13Features>
-        chain;
     auto& f10 = chain.get<vk::PhysicalDeviceFeatures2>().features;
     f10.shaderInt16 = s10.shaderInt16;
     f10.shaderInt64 = s10.shaderInt64;
@@ -328,8 +234,14 @@ Context::Context(const ContextOptions& options)
     // glslang's SPIR-V 1.6 output declares the workgroup size with LocalSizeId, which needs
     // maintenance4 (mandatory in Vulkan 1.3; device selection checks it).
     f13.maintenance4 = VK_TRUE;
+}
 
-    mFeatures = DeviceFeatures{
+// What Context::features() reports: the optional features enabled in `chain`.
+DeviceFeatures enabledFeatures(const DeviceCreateChain& chain) {
+    const auto& f10 = chain.get<vk::PhysicalDeviceFeatures2>().features;
+    const auto& f11 = chain.get<vk::PhysicalDeviceVulkan11Features>();
+    const auto& f12 = chain.get<vk::PhysicalDeviceVulkan12Features>();
+    return DeviceFeatures{
         .shaderFloat16 = bool(f12.shaderFloat16),
         .shaderInt8 = bool(f12.shaderInt8),
         .shaderInt16 = bool(f10.shaderInt16),
@@ -342,18 +254,138 @@ Context::Context(const ContextOptions& options)
         .storageImageReadWithoutFormat = bool(f10.shaderStorageImageReadWithoutFormat),
         .storageImageWriteWithoutFormat = bool(f10.shaderStorageImageWriteWithoutFormat),
     };
+}
 
-    float priority = 1.0f;
-    vk::DeviceQueueCreateInfo queueInfo{
-        .queueFamilyIndex = mQueueFamily, .queueCount = 1, .pQueuePriorities = &priority};
+}  // namespace
+
+Context::Context(const ContextOptions& options)
+    : mSink(std::make_unique<MessageSink>()), mVkContext(makeLoaderContext()) {
+    resolveValidationSwitches(options);
+    createInstance(chooseInstanceLayersAndExtensions(options));
+    pickPhysicalDevice(options.device);
+    createDevice(options);
+    createSharedObjects();
+}
+
+void Context::resolveValidationSwitches(const ContextOptions& options) {
+    const std::optional<bool> envValidation = envSwitch("FOVEA_VALIDATION");
+    const std::optional<bool> envSync = envSwitch("FOVEA_SYNC_VALIDATION");
+    mValidation = options.validation || options.syncValidation || envValidation.value_or(false) ||
+                  envSync.value_or(false);
+    mSyncValidation = mValidation && envSync.value_or(true);
+}
+
+Context::InstanceLayersAndExtensions Context::chooseInstanceLayersAndExtensions(
+    const ContextOptions& options) {
+    InstanceLayersAndExtensions enabled;
+    auto instanceExtensions = mVkContext.enumerateInstanceExtensionProperties();
+    mDebugUtils = hasExtension(instanceExtensions, VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    if (mDebugUtils) enabled.extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    for (const std::string& name : options.instanceExtensions) {
+        if (!hasExtension(instanceExtensions, name.c_str()))
+            throw RuntimeError("the Vulkan instance lacks extension " + name +
+                               " (needed to present to a window)");
+        enabled.extensions.push_back(name.c_str());
+    }
+    if (mValidation) addValidationLayer(enabled);
+    return enabled;
+}
+
+void Context::addValidationLayer(InstanceLayersAndExtensions& enabled) {
+    auto available = mVkContext.enumerateInstanceLayerProperties();
+    bool found = std::any_of(available.begin(), available.end(), [](const vk::LayerProperties& l) {
+        return std::string_view(l.layerName.data()) == kValidationLayer;
+    });
+    if (!found || !mDebugUtils) {
+        // A missing layer should not stop a render; tests notice via validationEnabled().
+        std::cerr << "fovea: warning: validation requested but " << kValidationLayer
+                  << " is not installed (apt install vulkan-validationlayers); continuing "
+                     "without validation\n";
+        mValidation = mSyncValidation = false;
+        return;
+    }
+    enabled.layers.push_back(kValidationLayer);
+    auto layerExtensions =
+        mVkContext.enumerateInstanceExtensionProperties(std::string(kValidationLayer));
+    if (mSyncValidation && hasExtension(layerExtensions, VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME))
+        enabled.extensions.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
+    else
+        mSyncValidation = false;
+}
+
+void Context::createInstance(const InstanceLayersAndExtensions& enabled) {
+    vk::ApplicationInfo appInfo{.pApplicationName = "fovea",
+                                .applicationVersion = VK_MAKE_API_VERSION(0, 0, 1, 0),
+                                .pEngineName = "fovea",
+                                .engineVersion = VK_MAKE_API_VERSION(0, 0, 1, 0),
+                                .apiVersion = kApiVersion};
+    vk::DebugUtilsMessengerCreateInfoEXT messengerInfo{
+        .messageSeverity = vk::DebugUtilsMessageSeverityFlagBitsEXT::eWarning |
+                           vk::DebugUtilsMessageSeverityFlagBitsEXT::eError,
+        .messageType = vk::DebugUtilsMessageTypeFlagBitsEXT::eGeneral |
+                       vk::DebugUtilsMessageTypeFlagBitsEXT::eValidation,
+        .pfnUserCallback = &Context::onDebugMessage,
+        .pUserData = mSink.get()};
+    vk::ValidationFeatureEnableEXT syncFeature =
+        vk::ValidationFeatureEnableEXT::eSynchronizationValidation;
+    vk::ValidationFeaturesEXT validationFeatures{.enabledValidationFeatureCount = 1,
+                                                 .pEnabledValidationFeatures = &syncFeature};
+    vk::InstanceCreateInfo instanceInfo{
+        .pApplicationInfo = &appInfo,
+        .enabledLayerCount = static_cast<uint32_t>(enabled.layers.size()),
+        .ppEnabledLayerNames = enabled.layers.data(),
+        .enabledExtensionCount = static_cast<uint32_t>(enabled.extensions.size()),
+        .ppEnabledExtensionNames = enabled.extensions.data()};
+    if (mValidation) {
+        // Chained into instance creation too, so messages from vkCreate/DestroyInstance count.
+        // The messenger info goes last: it is reused below, where its pNext must be null.
+        instanceInfo.pNext = &messengerInfo;
+        if (mSyncValidation) {
+            instanceInfo.pNext = &validationFeatures;
+            validationFeatures.pNext = &messengerInfo;
+        }
+    }
+    try {
+        mInstance = vk::raii::Instance(mVkContext, instanceInfo);
+    } catch (const vk::SystemError& e) {
+        throw RuntimeError(std::string("cannot create a Vulkan 1.3 instance: ") + e.what());
+    }
+    if (mValidation) mMessenger = vk::raii::DebugUtilsMessengerEXT(mInstance, messengerInfo);
+}
+
+void Context::pickPhysicalDevice(const std::string& spec) {
+    mPhysicalDevice = selectDevice(mInstance, spec);
+    mProperties = mPhysicalDevice.getProperties();
+    auto props2 =
+        mPhysicalDevice
+            .getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceDriverProperties>();
+    const auto& driver = props2.get<vk::PhysicalDeviceDriverProperties>();
+    mDriverName = driver.driverName.data();
+    mDriverInfo = driver.driverInfo.data();
+    mQueueFamily = *pickQueueFamily(mPhysicalDevice);
+}
+
+std::vector<const char*> Context::chooseDeviceExtensions(bool swapchain) const {
     std::vector<const char*> deviceExtensions{VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
-    if (options.swapchain) {
+    if (swapchain) {
         if (!hasExtension(mPhysicalDevice.enumerateDeviceExtensionProperties(),
                           VK_KHR_SWAPCHAIN_EXTENSION_NAME))
             throw RuntimeError("Vulkan device '" + deviceName() +
                                "' cannot present to a window (no VK_KHR_swapchain)");
         deviceExtensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
     }
+    return deviceExtensions;
+}
+
+void Context::createDevice(const ContextOptions& options) {
+    DeviceCreateChain chain;
+    enableSupportedFeatures(mPhysicalDevice, chain);
+    mFeatures = enabledFeatures(chain);
+
+    float priority = 1.0f;
+    vk::DeviceQueueCreateInfo queueInfo{
+        .queueFamilyIndex = mQueueFamily, .queueCount = 1, .pQueuePriorities = &priority};
+    std::vector<const char*> deviceExtensions = chooseDeviceExtensions(options.swapchain);
     auto& deviceInfo = chain.get<vk::DeviceCreateInfo>();
     deviceInfo.queueCreateInfoCount = 1;
     deviceInfo.pQueueCreateInfos = &queueInfo;
@@ -365,6 +397,9 @@ Context::Context(const ContextOptions& options)
         throw RuntimeError("cannot create a Vulkan device on '" + deviceName() + "': " + e.what());
     }
     mQueue = vk::raii::Queue(mDevice, mQueueFamily, 0);
+}
+
+void Context::createSharedObjects() {
     mCommandPool = vk::raii::CommandPool(
         mDevice,
         vk::CommandPoolCreateInfo{.flags = vk::CommandPoolCreateFlagBits::eTransient |

@@ -125,9 +125,34 @@ private:
         mutable std::mutex mutex;
         std::vector<std::string> messages;
     };
+    // The layers and extensions the instance is created with. The names point at constants or
+    // into ContextOptions::instanceExtensions, both of which outlive instance creation.
+    struct InstanceLayersAndExtensions {
+        std::vector<const char*> layers;
+        std::vector<const char*> extensions;
+    };
     static VKAPI_ATTR VkBool32 VKAPI_CALL onDebugMessage(
         VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
         const VkDebugUtilsMessengerCallbackDataEXT* data, void* userData);
+
+    // Construction stages, in the order the constructor runs them. Each fills the members it
+    // names; later stages rely on the members earlier ones set.
+    // Sets mValidation/mSyncValidation from the options and the FOVEA_*VALIDATION env switches.
+    void resolveValidationSwitches(const ContextOptions& options);
+    // Also sets mDebugUtils.
+    InstanceLayersAndExtensions chooseInstanceLayersAndExtensions(const ContextOptions& options);
+    // Turns validation off when the layer (or debug utils) is missing, and sync validation off
+    // when the layer lacks VK_EXT_validation_features.
+    void addValidationLayer(InstanceLayersAndExtensions& enabled);
+    // Creates mInstance and, with validation, mMessenger.
+    void createInstance(const InstanceLayersAndExtensions& enabled);
+    // Sets mPhysicalDevice, mProperties, the driver strings and mQueueFamily.
+    void pickPhysicalDevice(const std::string& spec);
+    std::vector<const char*> chooseDeviceExtensions(bool swapchain) const;
+    // Creates mDevice with the supported optional features (recorded in mFeatures) and mQueue.
+    void createDevice(const ContextOptions& options);
+    // The command pool, samplers and shader compiler every pass shares.
+    void createSharedObjects();
 
     // Declaration order is destruction order (reverse): the loader context outlives everything.
     std::unique_ptr<MessageSink> mSink;
