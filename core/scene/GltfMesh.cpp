@@ -156,81 +156,104 @@ void appendTangents(TriangleMesh& out, size_t firstVertex, size_t firstTriangle,
     out.tangents.insert(out.tangents.end(), generated.begin(), generated.end());
 }
 
-}  // namespace
+// The primitive's vertex attributes as the file stores them (object space), checked: finite
+// positions and UVs, colours in [0, 1], valid tangents, one value a vertex in every attribute.
+struct PrimitiveAttributes {
+    int positionAccessor = -1;
+    std::vector<float> positions;     // xyz a vertex
+    std::vector<float> normals;       // xyz a vertex; empty when the file has none
+    std::vector<float> uvs;           // uv a vertex; empty without TEXCOORD_0
+    std::vector<glm::vec4> colors;    // empty without COLOR_0
+    std::vector<glm::vec4> tangents;  // empty unless normal-mapped and the file has TANGENT
 
-void appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t primIndex,
-                     int64_t indexAccessor, const glm::dmat4& world, uint32_t materialId,
-                     bool normalMapped, const std::string& file, TriangleMesh& out,
-                     std::set<std::string>& warnings) {
-    const tinygltf::Primitive& prim = model.meshes.at(meshIndex).primitives.at(primIndex);
-    std::string pointer =
-        "/meshes/" + std::to_string(meshIndex) + "/primitives/" + std::to_string(primIndex);
-    int positionAccessor = attribute(prim, "POSITION");
-    std::vector<float> raw = readAccessorFloats(model, size_t(positionAccessor), 3, file);
-    size_t vertexCount = raw.size() / 3;
+    size_t vertexCount() const { return positions.size() / 3; }
+    glm::vec2 uvAt(size_t i) const {
+        return uvs.empty() ? glm::vec2(0.0f) : glm::vec2(uvs[2 * i], uvs[2 * i + 1]);
+    }
+    glm::vec4 colorAt(size_t i) const { return colors.empty() ? glm::vec4(1.0f) : colors[i]; }
+};
+
+std::vector<float> readPositions(const tinygltf::Model& model, int accessor,
+                                 const std::string& file) {
+    std::vector<float> raw = readAccessorFloats(model, size_t(accessor), 3, file);
     for (size_t i = 0; i < raw.size(); ++i) {
         if (!std::isfinite(raw[i])) {
-            throw InputError(file, "/accessors/" + std::to_string(positionAccessor),
+            throw InputError(file, "/accessors/" + std::to_string(accessor),
                              "POSITION of vertex " + std::to_string(i / 3) + " is not finite");
         }
     }
-    std::vector<float> rawNormals, rawUvs;
+    return raw;
+}
+
+std::vector<float> readUvs(const tinygltf::Model& model, int accessor, const std::string& file) {
+    std::vector<float> rawUvs = readAccessorFloats(model, size_t(accessor), 2, file);
+    for (size_t i = 0; i < rawUvs.size(); ++i) {
+        if (!std::isfinite(rawUvs[i])) {
+            throw InputError(file, "/accessors/" + std::to_string(accessor),
+                             "TEXCOORD_0 of vertex " + std::to_string(i / 2) + " is not finite");
+        }
+    }
+    return rawUvs;
+}
+
+// COLOR_0 (§3.7.2.1) multiplies the base colour; RGB gets alpha 1. Float values must lie in
+// [0, 1] (the validator's ACCESSOR_NON_CLAMPED is an error too): outside, or NaN, is an error.
+std::vector<glm::vec4> readColors(const tinygltf::Model& model, int accessor,
+                                  const std::string& file, const std::string& pointer) {
+    const uint32_t components =
+        model.accessors.at(size_t(accessor)).type == TINYGLTF_TYPE_VEC3 ? 3u : 4u;
+    const std::vector<float> rawColors =
+        readAccessorFloats(model, size_t(accessor), components, file);
+    std::vector<glm::vec4> colors(rawColors.size() / components, glm::vec4(1.0f));
+    for (size_t i = 0; i < rawColors.size(); ++i) {
+        const float v = rawColors[i];
+        if (!(v >= 0.0f && v <= 1.0f)) {
+            char value[32];
+            std::snprintf(value, sizeof value, "%g", double(v));
+            throw InputError(file, "/accessors/" + std::to_string(accessor),
+                             "COLOR_0 of vertex " + std::to_string(i / components) + " is " +
+                                 value + ", outside [0, 1] (" + pointer + ")");
+        }
+        colors[i / components][int(i % components)] = v;
+    }
+    return colors;
+}
+
+PrimitiveAttributes readAttributes(const tinygltf::Model& model, const tinygltf::Primitive& prim,
+                                   bool normalMapped, const std::string& file,
+                                   const std::string& pointer) {
+    PrimitiveAttributes attributes;
+    attributes.positionAccessor = attribute(prim, "POSITION");
+    attributes.positions = readPositions(model, attributes.positionAccessor, file);
     if (int a = attribute(prim, "NORMAL"); a >= 0) {
-        rawNormals = readAccessorFloats(model, size_t(a), 3, file);
+        attributes.normals = readAccessorFloats(model, size_t(a), 3, file);
     }
-    if (int a = attribute(prim, "TEXCOORD_0"); a >= 0) {
-        rawUvs = readAccessorFloats(model, size_t(a), 2, file);
-        for (size_t i = 0; i < rawUvs.size(); ++i) {
-            if (!std::isfinite(rawUvs[i])) {
-                throw InputError(
-                    file, "/accessors/" + std::to_string(a),
-                    "TEXCOORD_0 of vertex " + std::to_string(i / 2) + " is not finite");
-            }
-        }
-    }
-    // COLOR_0 (§3.7.2.1) multiplies the base colour; RGB gets alpha 1. Float values must lie in
-    // [0, 1] (the validator's ACCESSOR_NON_CLAMPED is an error too): outside, or NaN, is an error.
-    std::vector<glm::vec4> colors;
+    if (int a = attribute(prim, "TEXCOORD_0"); a >= 0) attributes.uvs = readUvs(model, a, file);
     if (int a = attribute(prim, "COLOR_0"); a >= 0) {
-        const uint32_t components =
-            model.accessors.at(size_t(a)).type == TINYGLTF_TYPE_VEC3 ? 3u : 4u;
-        const std::vector<float> rawColors = readAccessorFloats(model, size_t(a), components, file);
-        colors.resize(rawColors.size() / components, glm::vec4(1.0f));
-        for (size_t i = 0; i < rawColors.size(); ++i) {
-            const float v = rawColors[i];
-            if (!(v >= 0.0f && v <= 1.0f)) {
-                char value[32];
-                std::snprintf(value, sizeof value, "%g", double(v));
-                throw InputError(file, "/accessors/" + std::to_string(a),
-                                 "COLOR_0 of vertex " + std::to_string(i / components) + " is " +
-                                     value + ", outside [0, 1] (" + pointer + ")");
-            }
-            colors[i / components][int(i % components)] = v;
-        }
+        attributes.colors = readColors(model, a, file, pointer);
     }
     // TANGENT (§3.7.2.1: VEC4 float, xyz unit, w = +-1) only where a normal texture uses it.
-    std::vector<glm::vec4> rawTangents;
     int tangentAccessor = normalMapped ? attribute(prim, "TANGENT") : -1;
-    if (tangentAccessor >= 0) rawTangents = readTangents(model, size_t(tangentAccessor), file);
-    if ((!rawTangents.empty() && rawTangents.size() != vertexCount) ||
-        (!rawNormals.empty() && rawNormals.size() != raw.size()) ||
-        (!rawUvs.empty() && rawUvs.size() / 2 != vertexCount) ||
-        (!colors.empty() && colors.size() != vertexCount)) {
+    if (tangentAccessor >= 0) {
+        attributes.tangents = readTangents(model, size_t(tangentAccessor), file);
+    }
+    const size_t vertexCount = attributes.vertexCount();
+    if ((!attributes.tangents.empty() && attributes.tangents.size() != vertexCount) ||
+        (!attributes.normals.empty() && attributes.normals.size() != attributes.positions.size()) ||
+        (!attributes.uvs.empty() && attributes.uvs.size() / 2 != vertexCount) ||
+        (!attributes.colors.empty() && attributes.colors.size() != vertexCount)) {
         throw InputError(file, pointer + "/attributes", "attribute counts differ");
     }
-    std::vector<uint32_t> indices = readIndices(model, indexAccessor, vertexCount, file, pointer);
-    size_t triangles = indices.size() / 3;
-    if (indices.size() % 3 != 0) {
-        warnings.insert(pointer + ": " + std::to_string(indices.size() % 3) +
-                        " trailing vertices do not form a triangle and are ignored");
-    }
+    return attributes;
+}
 
-    glm::dmat3 linear(world);
-    double det = glm::determinant(linear);
-    bool flip = det < 0.0;
-    glm::dmat3 normalMatrix = glm::transpose(glm::inverse(linear));
-    std::vector<glm::vec3> positions(vertexCount);
-    for (size_t i = 0; i < vertexCount; ++i) {
+// The positions placed by the node's world matrix, each checked to stay usable in 32-bit floats.
+std::vector<glm::vec3> transformPositions(const PrimitiveAttributes& attributes,
+                                          const glm::dmat4& world, const std::string& file,
+                                          const std::string& pointer) {
+    const std::vector<float>& raw = attributes.positions;
+    std::vector<glm::vec3> positions(attributes.vertexCount());
+    for (size_t i = 0; i < positions.size(); ++i) {
         glm::dvec4 p = world * glm::dvec4(raw[3 * i], raw[3 * i + 1], raw[3 * i + 2], 1.0);
         positions[i] = glm::vec3(p);
         if (!finite(positions[i])) {
@@ -244,65 +267,93 @@ void appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t prim
         if (largest > kMaxSceneCoordinate) {
             char value[32];
             std::snprintf(value, sizeof value, "%g", largest);
-            throw InputError(file, "/accessors/" + std::to_string(positionAccessor),
+            throw InputError(file, "/accessors/" + std::to_string(attributes.positionAccessor),
                              "POSITION of vertex " + std::to_string(i) + " is at " + value +
                                  " after the node transform (" + pointer +
                                  "): coordinates beyond 1e15 overflow the 32-bit float bounds, "
                                  "BVH and ray distances");
         }
     }
-    auto uvAt = [&](size_t i) {
-        return rawUvs.empty() ? glm::vec2(0.0f) : glm::vec2(rawUvs[2 * i], rawUvs[2 * i + 1]);
-    };
-    uint64_t base = out.positions.size();
-    uint64_t added = rawNormals.empty() ? uint64_t(triangles) * 3 : vertexCount;
-    if (base + added > kMaxSceneVertices || out.triangles.size() + triangles > kMaxSceneTriangles) {
+    return positions;
+}
+
+void checkSceneLimits(const TriangleMesh& out, uint64_t addedVertices, size_t addedTriangles,
+                      const std::string& file, const std::string& pointer) {
+    const uint64_t base = out.positions.size();
+    if (base + addedVertices > kMaxSceneVertices ||
+        out.triangles.size() + addedTriangles > kMaxSceneTriangles) {
         throw InputError(file, pointer,
                          "the flattened scene exceeds fovea's limits of " +
                              std::to_string(kMaxSceneTriangles) + " triangles and " +
                              std::to_string(kMaxSceneVertices) + " vertices");
     }
+}
+
+// Which of the mesh's optional per-vertex streams this primitive appends to.
+struct OptionalStreams {
+    bool colors = false;
+    bool tangents = false;
+};
+
+// Makes room for the primitive's triangles, appends their material ids, and starts the optional
+// streams this primitive is the first to need, filled for the vertices already in the mesh.
+OptionalStreams startPrimitive(TriangleMesh& out, size_t triangles, uint32_t materialId,
+                               bool hasColors, bool normalMapped) {
     out.triangles.reserve(out.triangles.size() + triangles);
     out.materialIds.insert(out.materialIds.end(), triangles, materialId);
+    OptionalStreams streams;
     // Colours stay empty until a primitive has some; then every vertex gets one (white before).
-    if (!colors.empty() && out.colors.empty())
-        out.colors.assign(out.positions.size(), glm::vec4(1.0f));
-    const bool withColors = !colors.empty() || !out.colors.empty();
-    auto colorAt = [&](size_t i) { return colors.empty() ? glm::vec4(1.0f) : colors[i]; };
+    if (hasColors && out.colors.empty()) out.colors.assign(out.positions.size(), glm::vec4(1.0f));
+    streams.colors = hasColors || !out.colors.empty();
     // Tangents likewise: empty until a normal-mapped primitive comes; (0,0,0,1) elsewhere.
-    const bool withTangents = normalMapped || !out.tangents.empty();
+    streams.tangents = normalMapped || !out.tangents.empty();
     if (normalMapped && out.tangents.empty())
         out.tangents.assign(out.positions.size(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-    const size_t firstVertex = out.positions.size(), firstTriangle = out.triangles.size();
-    // Called on every return (tangents are kept only once a normal-mapped primitive came).
-    const auto finishTangents = [&](const std::vector<uint32_t>& sourceVertex) {
-        if (withTangents)
-            appendTangents(out, firstVertex, firstTriangle, normalMapped, rawTangents, sourceVertex,
-                           linear, flip);
-    };
+    return streams;
+}
 
-    if (rawNormals.empty()) {
-        // Flat normals need a vertex per corner: corners of different faces differ in normal.
-        std::vector<uint32_t> sourceVertex;  // the primitive's vertex of each corner
-        for (size_t t = 0; t < triangles; ++t) {
-            uint32_t a = indices[3 * t], b = indices[3 * t + 1], c = indices[3 * t + 2];
-            if (flip) std::swap(b, c);
-            glm::vec3 n = faceNormal(positions[a], positions[b], positions[c]);
-            uint32_t first = uint32_t(out.positions.size());
-            for (uint32_t v : {a, b, c}) {
-                out.positions.push_back(positions[v]);
-                out.normals.push_back(n);
-                out.uvs.push_back(uvAt(v));
-                if (withColors) out.colors.push_back(colorAt(v));
-                sourceVertex.push_back(v);
-            }
-            out.triangles.emplace_back(first, first + 1, first + 2);
+// One output vertex: `position` and `normal` in world space, UV and colour from the primitive's
+// vertex `source`.
+void appendVertex(TriangleMesh& out, const glm::vec3& position, const glm::vec3& normal,
+                  const PrimitiveAttributes& attributes, size_t source, bool withColors) {
+    out.positions.push_back(position);
+    out.normals.push_back(normal);
+    out.uvs.push_back(attributes.uvAt(source));
+    if (withColors) out.colors.push_back(attributes.colorAt(source));
+}
+
+// Flat normals need a vertex per corner: corners of different faces differ in normal. Returns
+// the primitive's vertex of each corner.
+std::vector<uint32_t> appendFlatShaded(TriangleMesh& out, const PrimitiveAttributes& attributes,
+                                       const std::vector<glm::vec3>& positions,
+                                       const std::vector<uint32_t>& indices, size_t triangles,
+                                       bool flip, bool withColors) {
+    std::vector<uint32_t> sourceVertex;
+    for (size_t t = 0; t < triangles; ++t) {
+        uint32_t a = indices[3 * t], b = indices[3 * t + 1], c = indices[3 * t + 2];
+        if (flip) std::swap(b, c);
+        glm::vec3 n = faceNormal(positions[a], positions[b], positions[c]);
+        uint32_t first = uint32_t(out.positions.size());
+        for (uint32_t v : {a, b, c}) {
+            appendVertex(out, positions[v], n, attributes, v, withColors);
+            sourceVertex.push_back(v);
         }
-        finishTangents(sourceVertex);
-        return;
+        out.triangles.emplace_back(first, first + 1, first + 2);
     }
-    std::vector<glm::vec3> normals(vertexCount);
-    for (size_t i = 0; i < vertexCount; ++i) {
+    return sourceVertex;
+}
+
+// The file's normals by the inverse transpose of the node's matrix, unusable ones repaired.
+std::vector<glm::vec3> transformNormals(const PrimitiveAttributes& attributes,
+                                        const glm::dmat3& linear,
+                                        const std::vector<glm::vec3>& positions,
+                                        const std::vector<uint32_t>& indices, size_t triangles,
+                                        bool flip, const std::string& pointer,
+                                        std::set<std::string>& warnings) {
+    const std::vector<float>& rawNormals = attributes.normals;
+    glm::dmat3 normalMatrix = glm::transpose(glm::inverse(linear));
+    std::vector<glm::vec3> normals(attributes.vertexCount());
+    for (size_t i = 0; i < normals.size(); ++i) {
         glm::dvec3 n(rawNormals[3 * i], rawNormals[3 * i + 1], rawNormals[3 * i + 2]);
         normals[i] = glm::vec3(normalMatrix * n);
     }
@@ -310,18 +361,68 @@ void appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t prim
         warnings.insert(pointer + ": " + std::to_string(fixed) +
                         " zero or non-finite normals replaced by face normals");
     }
-    for (size_t i = 0; i < vertexCount; ++i) {
-        out.positions.push_back(positions[i]);
-        out.normals.push_back(normals[i]);
-        out.uvs.push_back(uvAt(i));
-        if (withColors) out.colors.push_back(colorAt(i));
+    return normals;
+}
+
+// The file's normals keep the primitive's vertices shared: one output vertex each.
+void appendSmoothShaded(TriangleMesh& out, const PrimitiveAttributes& attributes,
+                        const std::vector<glm::vec3>& positions,
+                        const std::vector<glm::vec3>& normals, const std::vector<uint32_t>& indices,
+                        size_t triangles, bool flip, bool withColors) {
+    const uint32_t base = uint32_t(out.positions.size());
+    for (size_t i = 0; i < positions.size(); ++i) {
+        appendVertex(out, positions[i], normals[i], attributes, i, withColors);
     }
     for (size_t t = 0; t < triangles; ++t) {
         uint32_t a = indices[3 * t], b = indices[3 * t + 1], c = indices[3 * t + 2];
         if (flip) std::swap(b, c);
-        out.triangles.emplace_back(uint32_t(base) + a, uint32_t(base) + b, uint32_t(base) + c);
+        out.triangles.emplace_back(base + a, base + b, base + c);
     }
-    finishTangents({});
+}
+
+}  // namespace
+
+void appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t primIndex,
+                     int64_t indexAccessor, const glm::dmat4& world, uint32_t materialId,
+                     bool normalMapped, const std::string& file, TriangleMesh& out,
+                     std::set<std::string>& warnings) {
+    const tinygltf::Primitive& prim = model.meshes.at(meshIndex).primitives.at(primIndex);
+    const std::string pointer =
+        "/meshes/" + std::to_string(meshIndex) + "/primitives/" + std::to_string(primIndex);
+    const PrimitiveAttributes attributes = readAttributes(model, prim, normalMapped, file, pointer);
+    const size_t vertexCount = attributes.vertexCount();
+    const std::vector<uint32_t> indices =
+        readIndices(model, indexAccessor, vertexCount, file, pointer);
+    const size_t triangles = indices.size() / 3;
+    if (indices.size() % 3 != 0) {
+        warnings.insert(pointer + ": " + std::to_string(indices.size() % 3) +
+                        " trailing vertices do not form a triangle and are ignored");
+    }
+
+    const glm::dmat3 linear(world);
+    const bool flip = glm::determinant(linear) < 0.0;
+    const std::vector<glm::vec3> positions = transformPositions(attributes, world, file, pointer);
+    const bool flatShaded = attributes.normals.empty();
+    checkSceneLimits(out, flatShaded ? uint64_t(triangles) * 3 : vertexCount, triangles, file,
+                     pointer);
+    const OptionalStreams streams =
+        startPrimitive(out, triangles, materialId, !attributes.colors.empty(), normalMapped);
+    const size_t firstVertex = out.positions.size(), firstTriangle = out.triangles.size();
+
+    std::vector<uint32_t> sourceVertex;  // the primitive's vertex of each corner; empty: shared
+    if (flatShaded) {
+        sourceVertex =
+            appendFlatShaded(out, attributes, positions, indices, triangles, flip, streams.colors);
+    } else {
+        const std::vector<glm::vec3> normals = transformNormals(
+            attributes, linear, positions, indices, triangles, flip, pointer, warnings);
+        appendSmoothShaded(out, attributes, positions, normals, indices, triangles, flip,
+                           streams.colors);
+    }
+    // Tangents are kept only once a normal-mapped primitive came.
+    if (streams.tangents)
+        appendTangents(out, firstVertex, firstTriangle, normalMapped, attributes.tangents,
+                       sourceVertex, linear, flip);
 }
 
 }  // namespace fovea::scene::gltf

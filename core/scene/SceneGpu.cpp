@@ -194,7 +194,137 @@ EnvironmentUpload packEnvironment(const Scene& scene, const LightTable& lights, 
     return out;
 }
 
+void checkMeshMatchesBvh(const TriangleMesh& mesh, const Bvh& bvh) {
+    const std::vector<uint32_t>& order = bvh.triangleOrder();
+    if (order.size() != mesh.triangles.size())
+        throw RuntimeError("SceneGpu: the BVH was built for " + std::to_string(order.size()) +
+                           " triangles but the scene has " + std::to_string(mesh.triangles.size()));
+    if (mesh.materialIds.size() != mesh.triangles.size())
+        throw RuntimeError("SceneGpu: " + std::to_string(mesh.materialIds.size()) +
+                           " material ids for " + std::to_string(mesh.triangles.size()) +
+                           " triangles");
+}
+
+std::vector<layout::Vertex> packVertices(const TriangleMesh& mesh) {
+    std::vector<layout::Vertex> vertices(mesh.positions.size());
+    for (size_t v = 0; v < vertices.size(); ++v) {
+        // Loaders always fill normals and uvs; hand-built meshes may not (zero normal = the
+        // shader falls back to the geometric normal).
+        const glm::vec3 n = v < mesh.normals.size() ? mesh.normals[v] : glm::vec3(0.0f);
+        const glm::vec2 uv = v < mesh.uvs.size() ? mesh.uvs[v] : glm::vec2(0.0f);
+        vertices[v] = {glm::vec4(mesh.positions[v], uv.x), glm::vec4(n, uv.y)};
+    }
+    return vertices;
+}
+
+// `count` packed colours, white past the end of mesh.colors.
+std::vector<glm::uvec2> packVertexColors(const TriangleMesh& mesh, size_t count) {
+    std::vector<glm::uvec2> colors(count);
+    for (size_t v = 0; v < colors.size(); ++v)
+        colors[v] = packColor(v < mesh.colors.size() ? mesh.colors[v] : glm::vec4(1.0f));
+    return colors;
+}
+
+// scene_triangles and scene_bvh_triangles, both in BVH order.
+struct TriangleUpload {
+    std::vector<layout::Triangle> triangles;
+    std::vector<layout::TrianglePositions> positions;
+    bool alphaTested = false;      // a triangle whose material has an alpha test
+    bool stochasticAlpha = false;  // a triangle whose material is BLEND
+};
+
+TriangleUpload packTriangles(const TriangleMesh& mesh, const std::vector<uint32_t>& order,
+                             const std::vector<layout::Material>& gpuMaterials) {
+    TriangleUpload out;
+    out.triangles.resize(order.size());
+    out.positions.resize(order.size());
+    for (size_t i = 0; i < order.size(); ++i) {
+        const uint32_t t = order[i];
+        const glm::uvec3 tri = mesh.triangles[t];  // indices were checked by the BVH build
+        const uint32_t material = mesh.materialIds[t];
+        if (material >= gpuMaterials.size())
+            throw RuntimeError("SceneGpu: triangle " + std::to_string(t) + " uses material " +
+                               std::to_string(material) + " of " +
+                               std::to_string(gpuMaterials.size()));
+        out.triangles[i] = {tri, material};
+        const glm::vec3 v0 = mesh.positions[tri.x];
+        // The traversal reads v0 anyway: its w tells it whether to look the material up.
+        const bool alphaTested = gpuMaterials[material].params.w != 0.0f;
+        out.alphaTested = out.alphaTested || alphaTested;
+        out.stochasticAlpha = out.stochasticAlpha || gpuMaterials[material].params.w < 0.0f;
+        out.positions[i] = {glm::vec4(v0, alphaTested ? 1.0f : 0.0f),
+                            glm::vec4(mesh.positions[tri.y] - v0, 0.0f),
+                            glm::vec4(mesh.positions[tri.z] - v0, 0.0f)};
+    }
+    return out;
+}
+
+// scene_textures and scene_texels.
+struct TextureUpload {
+    std::vector<layout::Texture> table;  // one entry per Scene texture
+    std::vector<uint32_t> texels;        // RGBA8, one uint a texel
+};
+
+// Textures: every used one packed into one RGBA8 texel array (no descriptor indexing on
+// lavapipe, see docs/scene-gpu.md); unused ones keep a table entry without texels so
+// material indices stay Scene indices.
+TextureUpload packTextures(const gpu::Context& context, const std::vector<Texture>& textures,
+                           const std::vector<bool>& textureUsed) {
+    TextureUpload out;
+    out.table.assign(textures.size(), layout::Texture{});
+    size_t texelCount = 0;
+    for (size_t t = 0; t < textures.size(); ++t)
+        if (textureUsed[t] && hasTexels(textures[t]))
+            texelCount += size_t(textures[t].width) * textures[t].height;
+    const uint64_t maxRange = context.limits().maxStorageBufferRange;
+    if (texelCount * 4 > maxRange || texelCount > UINT32_MAX)
+        throw RuntimeError("SceneGpu: scene textures need " + std::to_string(texelCount * 4 >> 20) +
+                           " MiB of texels but '" + context.deviceName() + "' binds at most " +
+                           std::to_string(maxRange >> 20) + " MiB per storage buffer");
+    out.texels.resize(texelCount);
+    size_t offset = 0;
+    for (size_t t = 0; t < textures.size(); ++t) {
+        const Texture& tex = textures[t];
+        if (!textureUsed[t] || !hasTexels(tex)) continue;
+        const size_t count = size_t(tex.width) * tex.height;
+        // Bytes R,G,B,A become one little-endian uint: unpackUnorm4x8 reads R from the low byte.
+        std::memcpy(out.texels.data() + offset, tex.rgba8.data(), count * 4);
+        out.table[t] = {static_cast<uint32_t>(offset), tex.width, tex.height, 0u};
+        offset += count;
+    }
+    return out;
+}
+
+std::vector<layout::Light> packLights(const std::vector<Light>& lights) {
+    std::vector<layout::Light> gpuLights;
+    gpuLights.reserve(lights.size());
+    for (const Light& light : lights) gpuLights.push_back(packLight(light));
+    return gpuLights;
+}
+
+// The header and the texels in one buffer (the GLSL block's fixed part, then its array).
+std::vector<glm::vec4> environmentBufferData(const layout::EnvironmentHeader& header,
+                                             const EnvironmentUpload& environment) {
+    std::vector<glm::vec4> environmentData(sizeof(layout::EnvironmentHeader) / sizeof(glm::vec4));
+    std::memcpy(environmentData.data(), &header, sizeof(header));
+    environmentData.insert(environmentData.end(), environment.texels.begin(),
+                           environment.texels.end());
+    return environmentData;
+}
+
 }  // namespace
+
+// Every scene_* buffer's contents in the shaders' layouts (SceneGpu.h), before the upload.
+struct SceneGpu::Packed {
+    MaterialUpload materials;
+    std::vector<layout::Vertex> vertices;
+    std::vector<glm::vec4> tangents;  // empty unless a material reads a normal texture
+    std::vector<glm::uvec2> colors;   // empty unless the mesh has vertex colours
+    TriangleUpload triangles;
+    TextureUpload textures;
+    std::vector<layout::Light> lights;
+    EnvironmentUpload environment;
+};
 
 SceneGpu::SceneGpu(gpu::Context& context, const Scene& scene, const BvhBuildOptions& bvhOptions) {
     const Bvh bvh(scene.mesh, bvhOptions);
@@ -229,104 +359,46 @@ void SceneGpu::addBuffer(gpu::Context& context, const std::string& name, const v
 void SceneGpu::upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
                       const LightTable& lights) {
     const TriangleMesh& mesh = scene.mesh;
-    const std::vector<uint32_t>& order = bvh.triangleOrder();
-    if (order.size() != mesh.triangles.size())
-        throw RuntimeError("SceneGpu: the BVH was built for " + std::to_string(order.size()) +
-                           " triangles but the scene has " + std::to_string(mesh.triangles.size()));
-    if (mesh.materialIds.size() != mesh.triangles.size())
-        throw RuntimeError("SceneGpu: " + std::to_string(mesh.materialIds.size()) +
-                           " material ids for " + std::to_string(mesh.triangles.size()) +
-                           " triangles");
-    mTriangleOrder = order;
+    checkMeshMatchesBvh(mesh, bvh);
+    mTriangleOrder = bvh.triangleOrder();
     mBvhStats = bvh.stats();
 
+    Packed packed;
     // Materials: glTF's default material stands in when a hand-built scene has none.
     const std::vector<Material> fallback(1);
     const std::vector<Material>& materials = scene.materials.empty() ? fallback : scene.materials;
-    MaterialUpload packed = packMaterials(materials, scene, lights);
-    std::vector<layout::Material>& gpuMaterials = packed.materials;
-    const std::vector<bool>& textureUsed = packed.textureUsed;
-    const bool textured = packed.textured;
+    packed.materials = packMaterials(materials, scene, lights);
 
     // Geometry in BVH order.
-    std::vector<layout::Vertex> vertices(mesh.positions.size());
-    for (size_t v = 0; v < vertices.size(); ++v) {
-        // Loaders always fill normals and uvs; hand-built meshes may not (zero normal = the
-        // shader falls back to the geometric normal).
-        const glm::vec3 n = v < mesh.normals.size() ? mesh.normals[v] : glm::vec3(0.0f);
-        const glm::vec2 uv = v < mesh.uvs.size() ? mesh.uvs[v] : glm::vec2(0.0f);
-        vertices[v] = {glm::vec4(mesh.positions[v], uv.x), glm::vec4(n, uv.y)};
-    }
+    packed.vertices = packVertices(mesh);
     // Vertex colours only when the mesh has them (else an empty binding, compiled out).
     // Tangents only when a material's normal texture will read them (SCENE_HAS_NORMAL_MAPS).
-    mNormalMaps = packed.normalMapped;
-    std::vector<glm::vec4> tangents;
-    if (mNormalMaps) tangents = mesh.tangents;
+    mNormalMaps = packed.materials.normalMapped;
+    if (mNormalMaps) packed.tangents = mesh.tangents;
     mVertexColors = !mesh.colors.empty();
-    std::vector<glm::uvec2> colors(mVertexColors ? vertices.size() : 0);
-    for (size_t v = 0; v < colors.size(); ++v)
-        colors[v] = packColor(v < mesh.colors.size() ? mesh.colors[v] : glm::vec4(1.0f));
-    std::vector<layout::Triangle> triangles(order.size());
-    std::vector<layout::TrianglePositions> positions(order.size());
-    bool alphaTriangles = false;  // a triangle whose material has an alpha test
-    mStochasticAlpha = false;
-    for (size_t i = 0; i < order.size(); ++i) {
-        const uint32_t t = order[i];
-        const glm::uvec3 tri = mesh.triangles[t];  // indices were checked by the BVH build
-        const uint32_t material = mesh.materialIds[t];
-        if (material >= materials.size())
-            throw RuntimeError("SceneGpu: triangle " + std::to_string(t) + " uses material " +
-                               std::to_string(material) + " of " +
-                               std::to_string(materials.size()));
-        triangles[i] = {tri, material};
-        const glm::vec3 v0 = mesh.positions[tri.x];
-        // The traversal reads v0 anyway: its w tells it whether to look the material up.
-        const bool alphaTested = gpuMaterials[material].params.w != 0.0f;
-        alphaTriangles = alphaTriangles || alphaTested;
-        mStochasticAlpha = mStochasticAlpha || gpuMaterials[material].params.w < 0.0f;
-        positions[i] = {glm::vec4(v0, alphaTested ? 1.0f : 0.0f),
-                        glm::vec4(mesh.positions[tri.y] - v0, 0.0f),
-                        glm::vec4(mesh.positions[tri.z] - v0, 0.0f)};
-    }
+    packed.colors = packVertexColors(mesh, mVertexColors ? packed.vertices.size() : 0);
+    packed.triangles = packTriangles(mesh, mTriangleOrder, packed.materials.materials);
+    mStochasticAlpha = packed.triangles.stochasticAlpha;
 
-    // Textures: every used one packed into one RGBA8 texel array (no descriptor indexing on
-    // lavapipe, see docs/scene-gpu.md); unused ones keep a table entry without texels so
-    // material indices stay Scene indices.
-    std::vector<layout::Texture> textureTable(scene.textures.size(), layout::Texture{});
-    size_t texelCount = 0;
-    for (size_t t = 0; t < scene.textures.size(); ++t)
-        if (textureUsed[t] && hasTexels(scene.textures[t]))
-            texelCount += size_t(scene.textures[t].width) * scene.textures[t].height;
-    const uint64_t maxRange = context.limits().maxStorageBufferRange;
-    if (texelCount * 4 > maxRange || texelCount > UINT32_MAX)
-        throw RuntimeError("SceneGpu: scene textures need " + std::to_string(texelCount * 4 >> 20) +
-                           " MiB of texels but '" + context.deviceName() + "' binds at most " +
-                           std::to_string(maxRange >> 20) + " MiB per storage buffer");
-    std::vector<uint32_t> texels(texelCount);
-    size_t offset = 0;
-    for (size_t t = 0; t < scene.textures.size(); ++t) {
-        const Texture& tex = scene.textures[t];
-        if (!textureUsed[t] || !hasTexels(tex)) continue;
-        const size_t count = size_t(tex.width) * tex.height;
-        // Bytes R,G,B,A become one little-endian uint: unpackUnorm4x8 reads R from the low byte.
-        std::memcpy(texels.data() + offset, tex.rgba8.data(), count * 4);
-        textureTable[t] = {static_cast<uint32_t>(offset), tex.width, tex.height, 0u};
-        offset += count;
-    }
+    packed.textures = packTextures(context, scene.textures, packed.materials.textureUsed);
+    packed.lights = packLights(scene.lights);
 
-    std::vector<layout::Light> gpuLights;
-    gpuLights.reserve(scene.lights.size());
-    for (const Light& light : scene.lights) gpuLights.push_back(packLight(light));
+    describe(bvh, lights, packed);
+    packed.environment = packEnvironment(scene, lights, mInfo.radius, mEnvironment);
+    setFeatures(lights, packed);
+    uploadBuffers(context, bvh, lights, packed);
+}
 
+void SceneGpu::describe(const Bvh& bvh, const LightTable& lights, const Packed& packed) {
     const Bounds& bounds = bvh.bounds();
     mInfo = layout::Info{};
-    mInfo.vertexCount = static_cast<uint32_t>(vertices.size());
-    mInfo.triangleCount = static_cast<uint32_t>(triangles.size());
+    mInfo.vertexCount = static_cast<uint32_t>(packed.vertices.size());
+    mInfo.triangleCount = static_cast<uint32_t>(packed.triangles.triangles.size());
     mInfo.nodeCount = static_cast<uint32_t>(bvh.nodes().size());
-    mInfo.materialCount = static_cast<uint32_t>(gpuMaterials.size());
-    mInfo.textureCount = static_cast<uint32_t>(textureTable.size());
-    mInfo.texelCount = static_cast<uint32_t>(texelCount);
-    mInfo.lightCount = static_cast<uint32_t>(gpuLights.size());
+    mInfo.materialCount = static_cast<uint32_t>(packed.materials.materials.size());
+    mInfo.textureCount = static_cast<uint32_t>(packed.textures.table.size());
+    mInfo.texelCount = static_cast<uint32_t>(packed.textures.texels.size());
+    mInfo.lightCount = static_cast<uint32_t>(packed.lights.size());
     mInfo.emitterCount = static_cast<uint32_t>(lights.entries().size());
     mInfo.emissiveTriangleCount = lights.emissiveTriangleCount();
     mInfo.invalidTriangles = bvh.stats().invalidTriangles;
@@ -339,40 +411,44 @@ void SceneGpu::upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
         mInfo.boundsMax = glm::vec4(bounds.max, 0.0f);
         mInfo.radius = 0.5f * glm::length(bounds.extent());
     }
+}
 
+void SceneGpu::setFeatures(const LightTable& lights, const Packed& packed) {
     mFeatures = 0;
-    if (!triangles.empty()) mFeatures |= kSceneGeometry;
+    if (!packed.triangles.triangles.empty()) mFeatures |= kSceneGeometry;
     if (lights.emissiveTriangleCount() > 0) mFeatures |= kSceneEmissive;
-    if (textured) mFeatures |= kSceneTextures;
+    if (packed.materials.textured) mFeatures |= kSceneTextures;
     if (lights.punctualLightCount() > 0) mFeatures |= kScenePunctual;
-    const EnvironmentUpload environment =
-        packEnvironment(scene, lights, mInfo.radius, mEnvironment);
-    if (!environment.texels.empty()) mFeatures |= kSceneEnvironment;
-    if (alphaTriangles) mFeatures |= kSceneAlpha;
+    if (!packed.environment.texels.empty()) mFeatures |= kSceneEnvironment;
+    if (packed.triangles.alphaTested) mFeatures |= kSceneAlpha;
     mInfo.features = mFeatures;
+}
 
+void SceneGpu::uploadBuffers(gpu::Context& context, const Bvh& bvh, const LightTable& lights,
+                             const Packed& packed) {
+    const MaterialUpload& materials = packed.materials;
+    const TriangleUpload& triangles = packed.triangles;
+    const TextureUpload& textures = packed.textures;
     mBuffers.clear();
     addBuffer(context, "scene_info", &mInfo, sizeof(mInfo), true);
-    addBuffer(context, "scene_vertices", vertices.data(), bytesOf(vertices));
-    addBuffer(context, "scene_triangles", triangles.data(), bytesOf(triangles));
+    addBuffer(context, "scene_vertices", packed.vertices.data(), bytesOf(packed.vertices));
+    addBuffer(context, "scene_triangles", triangles.triangles.data(), bytesOf(triangles.triangles));
     addBuffer(context, "scene_bvh", bvh.nodes().data(), bytesOf(bvh.nodes()));
-    addBuffer(context, "scene_bvh_triangles", positions.data(), bytesOf(positions));
-    addBuffer(context, "scene_materials", gpuMaterials.data(), bytesOf(gpuMaterials));
-    addBuffer(context, "scene_textures", textureTable.data(), bytesOf(textureTable));
-    addBuffer(context, "scene_texels", texels.data(), bytesOf(texels));
-    addBuffer(context, "scene_texture_views", packed.views.data(), bytesOf(packed.views));
-    addBuffer(context, "scene_lights", gpuLights.data(), bytesOf(gpuLights));
+    addBuffer(context, "scene_bvh_triangles", triangles.positions.data(),
+              bytesOf(triangles.positions));
+    addBuffer(context, "scene_materials", materials.materials.data(), bytesOf(materials.materials));
+    addBuffer(context, "scene_textures", textures.table.data(), bytesOf(textures.table));
+    addBuffer(context, "scene_texels", textures.texels.data(), bytesOf(textures.texels));
+    addBuffer(context, "scene_texture_views", materials.views.data(), bytesOf(materials.views));
+    addBuffer(context, "scene_lights", packed.lights.data(), bytesOf(packed.lights));
     addBuffer(context, "scene_emitters", lights.entries().data(), bytesOf(lights.entries()));
-    addBuffer(context, "scene_vertex_colors", colors.data(), bytesOf(colors));
-    // The header and the texels in one buffer (the GLSL block's fixed part, then its array).
-    std::vector<glm::vec4> environmentData(sizeof(layout::EnvironmentHeader) / sizeof(glm::vec4));
-    std::memcpy(environmentData.data(), &mEnvironment, sizeof(mEnvironment));
-    environmentData.insert(environmentData.end(), environment.texels.begin(),
-                           environment.texels.end());
+    addBuffer(context, "scene_vertex_colors", packed.colors.data(), bytesOf(packed.colors));
+    const std::vector<glm::vec4> environmentData =
+        environmentBufferData(mEnvironment, packed.environment);
     addBuffer(context, "scene_environment", environmentData.data(), bytesOf(environmentData));
-    addBuffer(context, "scene_environment_alias", environment.alias.data(),
-              bytesOf(environment.alias));
-    addBuffer(context, "scene_tangents", tangents.data(), bytesOf(tangents));
+    addBuffer(context, "scene_environment_alias", packed.environment.alias.data(),
+              bytesOf(packed.environment.alias));
+    addBuffer(context, "scene_tangents", packed.tangents.data(), bytesOf(packed.tangents));
 }
 
 void SceneGpu::bind(gpu::ComputePipeline& pipeline) const {

@@ -159,8 +159,15 @@ public:
     const layout::Info& info() const { return mInfo; }
 
 private:
+    struct Packed;  // every buffer's contents before the upload (SceneGpu.cpp)
+
     void upload(gpu::Context& context, const Scene& scene, const Bvh& bvh,
                 const LightTable& lights);
+    // mInfo from what was packed and the BVH's bounds; features follow in setFeatures().
+    void describe(const Bvh& bvh, const LightTable& lights, const Packed& packed);
+    void setFeatures(const LightTable& lights, const Packed& packed);
+    void uploadBuffers(gpu::Context& context, const Bvh& bvh, const LightTable& lights,
+                       const Packed& packed);
     void addBuffer(gpu::Context& context, const std::string& name, const void* data, size_t bytes,
                    bool uniform = false);
 
