@@ -246,6 +246,109 @@ std::vector<std::string> ShaderInterface::pushConstantNames() const {
     return names;
 }
 
+namespace {
+
+// One descriptor: set, binding, array size, name, access and (storage images) format.
+ShaderBinding reflectBinding(spvc_compiler compiler, const spvc_reflected_resource& res,
+                             DescriptorKind kind) {
+    ShaderBinding b;
+    b.kind = kind;
+    b.set = spvc_compiler_get_decoration(compiler, res.id, SpvDecorationDescriptorSet);
+    b.binding = spvc_compiler_get_decoration(compiler, res.id, SpvDecorationBinding);
+    b.arraySize = arrayLength(compiler, res.type_id);
+    const char* instance = spvc_compiler_get_name(compiler, res.id);
+    b.name = instance && *instance ? instance : (res.name ? res.name : "");
+    const bool isBuffer =
+        kind == DescriptorKind::StorageBuffer || kind == DescriptorKind::UniformBuffer;
+    if (isBuffer) {
+        if (b.name.empty()) {
+            const char* block = spvc_compiler_get_name(compiler, res.base_type_id);
+            b.name = block ? block : "";
+        }
+        const SpvDecoration* decorations = nullptr;
+        size_t numDecorations = 0;
+        spvc_compiler_get_buffer_block_decorations(compiler, res.id, &decorations, &numDecorations);
+        for (size_t d = 0; d < numDecorations; ++d) {
+            if (decorations[d] == SpvDecorationNonWritable) b.readonly = true;
+            if (decorations[d] == SpvDecorationNonReadable) b.writeonly = true;
+        }
+        b.readonly = b.readonly || kind == DescriptorKind::UniformBuffer;
+        return b;
+    }
+    b.readonly = spvc_compiler_has_decoration(compiler, res.id, SpvDecorationNonWritable) ||
+                 kind == DescriptorKind::SampledImage;
+    b.writeonly = spvc_compiler_has_decoration(compiler, res.id, SpvDecorationNonReadable);
+    spvc_type type = spvc_compiler_get_type_handle(compiler, res.base_type_id);
+    if (spvc_type_get_image_dimension(type) == SpvDimBuffer)
+        throw RuntimeError("shader reflection: '" + b.name +
+                           "' is a texel buffer, which fovea cannot bind");
+    if (kind == DescriptorKind::StorageImage)
+        b.imageFormat = formatFromSpirv(spvc_type_get_image_storage_format(type));
+    return b;
+}
+
+// Every descriptor fovea binds, sorted by (set, binding); a kind it cannot bind is an error.
+std::vector<ShaderBinding> reflectBindings(spvc_compiler compiler, spvc_resources resources) {
+    std::vector<ShaderBinding> bindings;
+    const std::pair<spvc_resource_type, DescriptorKind> kinds[] = {
+        {SPVC_RESOURCE_TYPE_STORAGE_IMAGE, DescriptorKind::StorageImage},
+        {SPVC_RESOURCE_TYPE_SAMPLED_IMAGE, DescriptorKind::SampledImage},
+        {SPVC_RESOURCE_TYPE_STORAGE_BUFFER, DescriptorKind::StorageBuffer},
+        {SPVC_RESOURCE_TYPE_UNIFORM_BUFFER, DescriptorKind::UniformBuffer},
+    };
+    for (auto [type, kind] : kinds) {
+        size_t count = 0;
+        const spvc_reflected_resource* list = resourceList(resources, type, count);
+        for (size_t r = 0; r < count; ++r)
+            bindings.push_back(reflectBinding(compiler, list[r], kind));
+    }
+    const std::pair<spvc_resource_type, const char*> unsupported[] = {
+        {SPVC_RESOURCE_TYPE_SEPARATE_IMAGE, "separate texture (use a combined sampler2D)"},
+        {SPVC_RESOURCE_TYPE_SEPARATE_SAMPLERS, "separate sampler (use a combined sampler2D)"},
+        {SPVC_RESOURCE_TYPE_ACCELERATION_STRUCTURE, "acceleration structure"},
+        {SPVC_RESOURCE_TYPE_ATOMIC_COUNTER, "atomic counter"},
+    };
+    for (auto [type, what] : unsupported) {
+        size_t count = 0;
+        const spvc_reflected_resource* list = resourceList(resources, type, count);
+        if (count > 0)
+            throw RuntimeError("shader reflection: '" +
+                               std::string(list[0].name ? list[0].name : "") + "' is a " + what +
+                               ", which fovea cannot bind");
+    }
+    std::sort(bindings.begin(), bindings.end(), [](const auto& a, const auto& b) {
+        return std::tie(a.set, a.binding) < std::tie(b.set, b.binding);
+    });
+    return bindings;
+}
+
+// The push-constant block's size and members (name, offset, size, GLSL type), if any.
+void reflectPushConstants(spvc_compiler compiler, spvc_resources resources, ShaderInterface& out) {
+    size_t pushCount = 0;
+    const spvc_reflected_resource* push =
+        resourceList(resources, SPVC_RESOURCE_TYPE_PUSH_CONSTANT, pushCount);
+    if (pushCount == 0) return;
+    spvc_type block = spvc_compiler_get_type_handle(compiler, push[0].base_type_id);
+    size_t blockSize = 0;
+    spvc_compiler_get_declared_struct_size(compiler, block, &blockSize);
+    out.pushConstantSize = static_cast<uint32_t>(blockSize);
+    for (uint32_t m = 0; m < spvc_type_get_num_member_types(block); ++m) {
+        PushConstantMember member;
+        const char* name = spvc_compiler_get_member_name(compiler, push[0].base_type_id, m);
+        member.name = name ? name : "";
+        unsigned offset = 0;
+        spvc_compiler_type_struct_member_offset(compiler, block, m, &offset);
+        size_t size = 0;
+        spvc_compiler_get_declared_struct_member_size(compiler, block, m, &size);
+        member.offset = offset;
+        member.size = static_cast<uint32_t>(size);
+        member.typeName = glslTypeName(compiler, spvc_type_get_member_type(block, m));
+        out.pushConstants.push_back(std::move(member));
+    }
+}
+
+}  // namespace
+
 ShaderInterface reflectShader(const std::vector<uint32_t>& spirv) {
     spvc_context rawContext = nullptr;
     if (spvc_context_create(&rawContext) != SPVC_SUCCESS)
@@ -270,96 +373,8 @@ ShaderInterface reflectShader(const std::vector<uint32_t>& spirv) {
     for (uint32_t i = 0; i < 3; ++i)
         out.localSize[i] = std::max(1u, spvc_compiler_get_execution_mode_argument_by_index(
                                             compiler, SpvExecutionModeLocalSize, i));
-
-    auto addBindings = [&](spvc_resource_type type, DescriptorKind kind) {
-        size_t count = 0;
-        const spvc_reflected_resource* list = resourceList(resources, type, count);
-        for (size_t r = 0; r < count; ++r) {
-            const auto& res = list[r];
-            ShaderBinding b;
-            b.kind = kind;
-            b.set = spvc_compiler_get_decoration(compiler, res.id, SpvDecorationDescriptorSet);
-            b.binding = spvc_compiler_get_decoration(compiler, res.id, SpvDecorationBinding);
-            b.arraySize = arrayLength(compiler, res.type_id);
-            const char* instance = spvc_compiler_get_name(compiler, res.id);
-            b.name = instance && *instance ? instance : (res.name ? res.name : "");
-            const bool isBuffer =
-                kind == DescriptorKind::StorageBuffer || kind == DescriptorKind::UniformBuffer;
-            if (isBuffer) {
-                if (b.name.empty()) {
-                    const char* block = spvc_compiler_get_name(compiler, res.base_type_id);
-                    b.name = block ? block : "";
-                }
-                const SpvDecoration* decorations = nullptr;
-                size_t numDecorations = 0;
-                spvc_compiler_get_buffer_block_decorations(compiler, res.id, &decorations,
-                                                           &numDecorations);
-                for (size_t d = 0; d < numDecorations; ++d) {
-                    if (decorations[d] == SpvDecorationNonWritable) b.readonly = true;
-                    if (decorations[d] == SpvDecorationNonReadable) b.writeonly = true;
-                }
-                b.readonly = b.readonly || kind == DescriptorKind::UniformBuffer;
-            } else {
-                b.readonly =
-                    spvc_compiler_has_decoration(compiler, res.id, SpvDecorationNonWritable) ||
-                    kind == DescriptorKind::SampledImage;
-                b.writeonly =
-                    spvc_compiler_has_decoration(compiler, res.id, SpvDecorationNonReadable);
-                spvc_type type = spvc_compiler_get_type_handle(compiler, res.base_type_id);
-                if (spvc_type_get_image_dimension(type) == SpvDimBuffer)
-                    throw RuntimeError("shader reflection: '" + b.name +
-                                       "' is a texel buffer, which fovea cannot bind");
-                if (kind == DescriptorKind::StorageImage)
-                    b.imageFormat = formatFromSpirv(spvc_type_get_image_storage_format(type));
-            }
-            out.bindings.push_back(std::move(b));
-        }
-    };
-    addBindings(SPVC_RESOURCE_TYPE_STORAGE_IMAGE, DescriptorKind::StorageImage);
-    addBindings(SPVC_RESOURCE_TYPE_SAMPLED_IMAGE, DescriptorKind::SampledImage);
-    addBindings(SPVC_RESOURCE_TYPE_STORAGE_BUFFER, DescriptorKind::StorageBuffer);
-    addBindings(SPVC_RESOURCE_TYPE_UNIFORM_BUFFER, DescriptorKind::UniformBuffer);
-
-    const std::pair<spvc_resource_type, const char*> unsupported[] = {
-        {SPVC_RESOURCE_TYPE_SEPARATE_IMAGE, "separate texture (use a combined sampler2D)"},
-        {SPVC_RESOURCE_TYPE_SEPARATE_SAMPLERS, "separate sampler (use a combined sampler2D)"},
-        {SPVC_RESOURCE_TYPE_ACCELERATION_STRUCTURE, "acceleration structure"},
-        {SPVC_RESOURCE_TYPE_ATOMIC_COUNTER, "atomic counter"},
-    };
-    for (auto [type, what] : unsupported) {
-        size_t count = 0;
-        const spvc_reflected_resource* list = resourceList(resources, type, count);
-        if (count > 0)
-            throw RuntimeError("shader reflection: '" +
-                               std::string(list[0].name ? list[0].name : "") + "' is a " + what +
-                               ", which fovea cannot bind");
-    }
-    std::sort(out.bindings.begin(), out.bindings.end(), [](const auto& a, const auto& b) {
-        return std::tie(a.set, a.binding) < std::tie(b.set, b.binding);
-    });
-
-    size_t pushCount = 0;
-    const spvc_reflected_resource* push =
-        resourceList(resources, SPVC_RESOURCE_TYPE_PUSH_CONSTANT, pushCount);
-    if (pushCount > 0) {
-        spvc_type block = spvc_compiler_get_type_handle(compiler, push[0].base_type_id);
-        size_t blockSize = 0;
-        spvc_compiler_get_declared_struct_size(compiler, block, &blockSize);
-        out.pushConstantSize = static_cast<uint32_t>(blockSize);
-        for (uint32_t m = 0; m < spvc_type_get_num_member_types(block); ++m) {
-            PushConstantMember member;
-            const char* name = spvc_compiler_get_member_name(compiler, push[0].base_type_id, m);
-            member.name = name ? name : "";
-            unsigned offset = 0;
-            spvc_compiler_type_struct_member_offset(compiler, block, m, &offset);
-            size_t size = 0;
-            spvc_compiler_get_declared_struct_member_size(compiler, block, m, &size);
-            member.offset = offset;
-            member.size = static_cast<uint32_t>(size);
-            member.typeName = glslTypeName(compiler, spvc_type_get_member_type(block, m));
-            out.pushConstants.push_back(std::move(member));
-        }
-    }
+    out.bindings = reflectBindings(compiler, resources);
+    reflectPushConstants(compiler, resources, out);
     return out;
 }
 

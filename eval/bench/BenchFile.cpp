@@ -174,25 +174,25 @@ FlipChoice parseFlip(const Reader& r, const json& f) {
     return choice;
 }
 
-}  // namespace
-
-BenchSpec parseBenchFile(const fs::path& file) {
-    const std::string name = file.string();
-    // parseJsonText: line and column of a syntax error, the nesting and NUL-byte limits.
-    json j = parseJsonText(readUserTextFile(file, kMaxJsonFileBytes, "bench file"), name);
-    Reader r(name);
+void checkTopLevelFields(const Reader& r, const json& j) {
     r.keys(
         j, "",
         {"version",      "name",      "description", "scene",        "camera", "size", "stereo",
          "camera_model", "sun",       "env",         "frames",       "warmup", "seed", "seeds",
          "output",       "reference", "noise_floor", "also_against", "layers", "flip", "graphs"});
-    BenchSpec spec;
-    spec.file = name;
-    if (r.count(r.need(j, "", "version"), "/version", 1, 1) != 1) r.fail("/version", "expected 1");
-    spec.name = j.contains("name") ? r.string(j["name"], "/name") : file.stem().string();
+}
+
+// `scene`: a file relative to the bench file, or a built-in scene ("builtin:...") that is not
+// a file at all; `camera`: a camera path file.
+void parseSceneAndCamera(const Reader& r, const json& j, BenchSpec& spec) {
     const std::string scene = r.string(r.need(j, "", "scene"), "/scene");
     spec.scene = scene.rfind("builtin:", 0) == 0 ? scene : r.path(j["scene"], "/scene", "scene");
     if (j.contains("camera")) spec.camera = r.path(j["camera"], "/camera", "camera path");
+}
+
+// `size`, `stereo` and `camera_model`; the 2:1 check of an equirect image needs both the size
+// and the model, so it comes after them.
+void parseImage(const Reader& r, const json& j, BenchSpec& spec) {
     const json& size = r.need(j, "", "size");
     if (!size.is_array() || size.size() != 2) r.fail("/size", "expected [width, height]");
     spec.width = r.count(size[0], "/size/0", 1, 16384);
@@ -208,11 +208,19 @@ BenchSpec parseBenchFile(const fs::path& file) {
     }
     if (spec.cameraModel == "equirect" && spec.width != 2 * spec.height)
         r.fail("/size", "an equirect camera needs a 2:1 image (width twice the height)");
+}
+
+// `sun` and `env`, the lights added for every graph and the reference.
+void parseLighting(const Reader& r, const json& j, BenchSpec& spec) {
     if (j.contains("sun")) {
         if (!j["sun"].is_boolean()) r.fail("/sun", "expected true or false");
         spec.sun = j["sun"].get<bool>();
     }
     if (j.contains("env")) parseEnvironment(r, j["env"], spec);
+}
+
+// `frames`, `warmup` (at least one frame must be left to measure) and `seed` or `seeds`.
+void parseFramesAndSeeds(const Reader& r, const json& j, BenchSpec& spec) {
     spec.frames = r.count(r.need(j, "", "frames"), "/frames", 1, 1u << 20);
     if (j.contains("warmup")) spec.warmup = r.count(j["warmup"], "/warmup", 0, 1u << 20);
     if (spec.warmup >= spec.frames)
@@ -220,73 +228,78 @@ BenchSpec parseBenchFile(const fs::path& file) {
                               ") leaves no measured frame of " + std::to_string(spec.frames));
     if (j.contains("seed")) spec.seeds = {r.count(j["seed"], "/seed", 0, 0xffffffffu)};
     if (j.contains("seeds")) spec.seeds = parseSeeds(r, j);
-    if (j.contains("output")) spec.output = r.string(j["output"], "/output");
-    spec.reference = parseReference(r, r.need(j, "", "reference"));
-    if (j.contains("noise_floor")) {
-        const json& n = j["noise_floor"];
-        if (n.is_string() && n.get<std::string>() == "render") {
-            if (!spec.reference.render)
-                r.fail("/noise_floor",
-                       "\"render\" needs a rendered /reference; name a second reference file "
-                       "(another seed) instead");
-            spec.noiseFloorRender = true;
-        } else if (n.is_string()) {
-            spec.noiseFloor = r.resolve(n, "/noise_floor").lexically_normal().string();
-        } else {
+}
+
+// `noise_floor`: "render" (needs a rendered reference) or a second reference file.
+void parseNoiseFloor(const Reader& r, const json& n, BenchSpec& spec) {
+    if (n.is_string() && n.get<std::string>() == "render") {
+        if (!spec.reference.render)
             r.fail("/noise_floor",
-                   "expected \"render\" or the path of a second reference with another seed");
-        }
+                   "\"render\" needs a rendered /reference; name a second reference file "
+                   "(another seed) instead");
+        spec.noiseFloorRender = true;
+    } else if (n.is_string()) {
+        spec.noiseFloor = r.resolve(n, "/noise_floor").lexically_normal().string();
+    } else {
+        r.fail("/noise_floor",
+               "expected \"render\" or the path of a second reference with another seed");
     }
-    if (j.contains("also_against")) {
-        const json& a = j["also_against"];
-        if (!a.is_array())
-            r.fail("/also_against", "expected an array of {\"label\", \"reference\"}");
-        for (size_t i = 0; i < a.size(); ++i) {
-            BenchAgainst g;
-            g.pointer = "/also_against/" + std::to_string(i);
-            r.keys(a[i], g.pointer, {"label", "reference", "noise_floor"});
-            g.label = r.string(r.need(a[i], g.pointer, "label"), g.pointer + "/label");
-            if (g.label == "reference")
-                r.fail(g.pointer + "/label", "'reference' names the bench's own reference");
-            for (const auto& other : spec.against)
-                if (other.label == g.label)
-                    r.fail(g.pointer + "/label", "label '" + g.label + "' is used twice");
-            // Checked when the run starts, like /reference (it may be rendered first).
-            g.file = r.resolve(r.need(a[i], g.pointer, "reference"), g.pointer + "/reference")
-                         .lexically_normal()
-                         .string();
-            if (a[i].contains("noise_floor"))
-                g.noiseFloor = r.resolve(a[i]["noise_floor"], g.pointer + "/noise_floor")
-                                   .lexically_normal()
-                                   .string();
-            spec.against.push_back(std::move(g));
-        }
+}
+
+// `also_against`: more references, each with a unique label other than "reference".
+std::vector<BenchAgainst> parseAlsoAgainst(const Reader& r, const json& a) {
+    if (!a.is_array()) r.fail("/also_against", "expected an array of {\"label\", \"reference\"}");
+    std::vector<BenchAgainst> against;
+    for (size_t i = 0; i < a.size(); ++i) {
+        BenchAgainst g;
+        g.pointer = "/also_against/" + std::to_string(i);
+        r.keys(a[i], g.pointer, {"label", "reference", "noise_floor"});
+        g.label = r.string(r.need(a[i], g.pointer, "label"), g.pointer + "/label");
+        if (g.label == "reference")
+            r.fail(g.pointer + "/label", "'reference' names the bench's own reference");
+        for (const auto& other : against)
+            if (other.label == g.label)
+                r.fail(g.pointer + "/label", "label '" + g.label + "' is used twice");
+        // Checked when the run starts, like /reference (it may be rendered first).
+        g.file = r.resolve(r.need(a[i], g.pointer, "reference"), g.pointer + "/reference")
+                     .lexically_normal()
+                     .string();
+        if (a[i].contains("noise_floor"))
+            g.noiseFloor = r.resolve(a[i]["noise_floor"], g.pointer + "/noise_floor")
+                               .lexically_normal()
+                               .string();
+        against.push_back(std::move(g));
     }
-    if (j.contains("flip")) spec.flip = parseFlip(r, j["flip"]);
-    if (j.contains("layers")) {
-        const json& l = j["layers"];
-        r.keys(l, "/layers", {"r0", "r1", "unit"});
-        auto radius = [&](const char* key) {
-            const json& v = r.need(l, "/layers", key);
-            const std::string pointer = std::string("/layers/") + key;
-            if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0)
-                r.fail(pointer, "expected a finite number >= 0");
-            return v.get<double>();
-        };
-        eval::LayerRadii radii;
-        radii.r0 = radius("r0");
-        radii.r1 = radius("r1");
-        if (radii.r1 < radii.r0) r.fail("/layers/r1", "r1 is smaller than r0");
-        if (l.contains("unit")) {
-            const std::string unit = r.string(l["unit"], "/layers/unit");
-            if (unit != "pixels" && unit != "degrees")
-                r.fail("/layers/unit", "expected \"pixels\" or \"degrees\"");
-            radii.degrees = unit == "degrees";
-        }
-        spec.layers = radii;
+    return against;
+}
+
+// `layers`: the radii of the per-layer errors, {"r0", "r1", "unit": "pixels"|"degrees"}.
+eval::LayerRadii parseLayers(const Reader& r, const json& l) {
+    r.keys(l, "/layers", {"r0", "r1", "unit"});
+    auto radius = [&](const char* key) {
+        const json& v = r.need(l, "/layers", key);
+        const std::string pointer = std::string("/layers/") + key;
+        if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0)
+            r.fail(pointer, "expected a finite number >= 0");
+        return v.get<double>();
+    };
+    eval::LayerRadii radii;
+    radii.r0 = radius("r0");
+    radii.r1 = radius("r1");
+    if (radii.r1 < radii.r0) r.fail("/layers/r1", "r1 is smaller than r0");
+    if (l.contains("unit")) {
+        const std::string unit = r.string(l["unit"], "/layers/unit");
+        if (unit != "pixels" && unit != "degrees")
+            r.fail("/layers/unit", "expected \"pixels\" or \"degrees\"");
+        radii.degrees = unit == "degrees";
     }
-    const json& graphs = r.need(j, "", "graphs");
+    return radii;
+}
+
+// `graphs`: the graphs to run, each with a unique label (default: the file's stem).
+std::vector<BenchGraph> parseGraphs(const Reader& r, const json& graphs) {
     if (!graphs.is_array() || graphs.empty()) r.fail("/graphs", "expected a non-empty array");
+    std::vector<BenchGraph> out;
     for (size_t i = 0; i < graphs.size(); ++i) {
         BenchGraph g;
         g.pointer = "/graphs/" + std::to_string(i);
@@ -297,11 +310,38 @@ BenchSpec parseBenchFile(const fs::path& file) {
         if (graphs[i].contains("set")) g.sets = r.strings(graphs[i]["set"], g.pointer + "/set");
         if (graphs[i].contains("output"))
             g.output = r.string(graphs[i]["output"], g.pointer + "/output");
-        for (const auto& other : spec.graphs)
+        for (const auto& other : out)
             if (other.label == g.label)
                 r.fail(g.pointer + "/label", "label '" + g.label + "' is used twice");
-        spec.graphs.push_back(std::move(g));
+        out.push_back(std::move(g));
     }
+    return out;
+}
+
+}  // namespace
+
+// The stages run in a fixed order: the first error reported for a bad file must not change.
+BenchSpec parseBenchFile(const fs::path& file) {
+    const std::string name = file.string();
+    // parseJsonText: line and column of a syntax error, the nesting and NUL-byte limits.
+    json j = parseJsonText(readUserTextFile(file, kMaxJsonFileBytes, "bench file"), name);
+    Reader r(name);
+    checkTopLevelFields(r, j);
+    BenchSpec spec;
+    spec.file = name;
+    if (r.count(r.need(j, "", "version"), "/version", 1, 1) != 1) r.fail("/version", "expected 1");
+    spec.name = j.contains("name") ? r.string(j["name"], "/name") : file.stem().string();
+    parseSceneAndCamera(r, j, spec);
+    parseImage(r, j, spec);
+    parseLighting(r, j, spec);
+    parseFramesAndSeeds(r, j, spec);
+    if (j.contains("output")) spec.output = r.string(j["output"], "/output");
+    spec.reference = parseReference(r, r.need(j, "", "reference"));
+    if (j.contains("noise_floor")) parseNoiseFloor(r, j["noise_floor"], spec);
+    if (j.contains("also_against")) spec.against = parseAlsoAgainst(r, j["also_against"]);
+    if (j.contains("flip")) spec.flip = parseFlip(r, j["flip"]);
+    if (j.contains("layers")) spec.layers = parseLayers(r, j["layers"]);
+    spec.graphs = parseGraphs(r, r.need(j, "", "graphs"));
     return spec;
 }
 

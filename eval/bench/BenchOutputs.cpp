@@ -54,13 +54,15 @@ const char* const kBandFigures[] = {"rmse_0_5deg", "rmse_5_20deg", "rmse_20deg_p
 const char* const kLayerFigures[] = {"rmse_percent_fovea", "rmse_percent_middle",
                                      "rmse_percent_outer"};
 
+// {markdown label, csv column} of each eccentricity band.
+using BandColumns = std::vector<std::pair<std::string, std::string>>;
+
 // The eccentricity bands the errors hold, from the first result's mean: {markdown label, csv
 // column}. A perspective camera gives 0-5, 5-20, 20+ degrees (rmse_0_5deg, rmse_5_20deg,
 // rmse_20deg_plus); an equirect one 0-5, 5-10, 10-20, 20-80, 80+ (EccentricityBands.h). Without
 // any errors the perspective three, so the csv header keeps its columns.
-std::vector<std::pair<std::string, std::string>> bandColumns(
-    const std::vector<BenchResult>& results) {
-    std::vector<std::pair<std::string, std::string>> out;
+BandColumns bandColumns(const std::vector<BenchResult>& results) {
+    BandColumns out;
     const json* bands = nullptr;
     if (!results.empty() && results.front().errors.contains("mean") &&
         results.front().errors["mean"].contains("bands"))
@@ -181,13 +183,13 @@ void floorNote(std::ostream& t, const json& header, const std::string& label) {
          "floor are not resolved.\n\n";
 }
 
-}  // namespace
+// Several seeds: every graph ran once per seed, and the errors hold the per-seed figures.
+bool ranSeveralSeeds(const std::vector<BenchResult>& results) {
+    return results.front().errors.contains("seeds");
+}
 
-void writeBenchTables(const OutputFolder& folder, const json& header,
-                      const std::vector<BenchResult>& results) {
-    std::ostringstream c;
-    const json* floor = floorOf(header, "reference");
-    const auto bandColumnList = bandColumns(results);
+void csvHeader(std::ostream& c, const std::vector<BenchResult>& results,
+               const BandColumns& bandColumnList, bool seeds) {
     c << "label,file,output,frame_ms_median,frame_ms_mean,speedup,rmse_percent,rmse,rel_mse,"
          "psnr_db,ssim,temporal_error,flip_mean";
     for (const auto& column : bandColumnList) c << "," << column.second;
@@ -196,34 +198,47 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
          "rmse_percent_fovea,rmse_percent_middle,rmse_percent_outer,pareto";
     for (const auto& a : results.front().against)
         c << "," << csv("rmse_percent_" + a.label) << "," << csv("worst_rmse_percent_" + a.label);
-    const bool seeds = results.front().errors.contains("seeds");  // several seeds
     if (seeds) c << seedCsvHeader();
     c << "\n";
-    for (const auto& r : results) {
-        const auto& m = r.meanErrors;
-        c << csv(r.graph.label) << "," << csv(r.graph.file) << "," << csv(r.output) << ","
-          << benchNumber(r.frameMs.median, "%.6g") << "," << benchNumber(r.frameMs.mean, "%.6g")
-          << "," << benchNumber(r.speedup, "%.6g") << "," << benchNumber(m.rmsePercent, "%.6g")
-          << "," << benchNumber(m.rmse, "%.6g") << "," << benchNumber(m.relMse, "%.6g") << ","
-          << benchNumber(m.psnr, "%.6g") << "," << benchNumber(m.ssim, "%.6g") << ","
-          << benchNumber(r.temporalError, "%.6g") << "," << benchNumber(m.flipMean, "%.6g");
-        for (double v : bandRmse(r.errors, bandColumnList.size()))
-            c << "," << benchNumber(v, "%.6g");
-        const auto [worstFrame, worstPercent] = worstOf(r.errors);
-        c << "," << benchNumber(floor ? meanOf(*floor, "rmse_percent") : std::nan(""), "%.6g")
-          << "," << benchNumber(correctedPercent(r.errors, floor), "%.6g") << "," << worstFrame
-          << "," << benchNumber(worstPercent, "%.6g");
-        for (double v : layerRmsePercent(r.errors)) c << "," << benchNumber(v, "%.6g");
-        c << "," << (r.pareto ? "true" : "false");
-        for (const auto& a : r.against)
-            c << "," << benchNumber(a.meanErrors.rmsePercent, "%.6g") << ","
-              << benchNumber(worstOf(a.errors).second, "%.6g");
-        if (seeds) c << seedCsvRow(r);
-        c << "\n";
-    }
-    folder.writeText("bench.csv", c.str());
+}
 
-    std::ostringstream t;
+void csvRow(std::ostream& c, const BenchResult& r, const BandColumns& bandColumnList,
+            const json* floor, bool seeds) {
+    const auto& m = r.meanErrors;
+    c << csv(r.graph.label) << "," << csv(r.graph.file) << "," << csv(r.output) << ","
+      << benchNumber(r.frameMs.median, "%.6g") << "," << benchNumber(r.frameMs.mean, "%.6g") << ","
+      << benchNumber(r.speedup, "%.6g") << "," << benchNumber(m.rmsePercent, "%.6g") << ","
+      << benchNumber(m.rmse, "%.6g") << "," << benchNumber(m.relMse, "%.6g") << ","
+      << benchNumber(m.psnr, "%.6g") << "," << benchNumber(m.ssim, "%.6g") << ","
+      << benchNumber(r.temporalError, "%.6g") << "," << benchNumber(m.flipMean, "%.6g");
+    for (double v : bandRmse(r.errors, bandColumnList.size())) c << "," << benchNumber(v, "%.6g");
+    const auto [worstFrame, worstPercent] = worstOf(r.errors);
+    c << "," << benchNumber(floor ? meanOf(*floor, "rmse_percent") : std::nan(""), "%.6g") << ","
+      << benchNumber(correctedPercent(r.errors, floor), "%.6g") << "," << worstFrame << ","
+      << benchNumber(worstPercent, "%.6g");
+    for (double v : layerRmsePercent(r.errors)) c << "," << benchNumber(v, "%.6g");
+    c << "," << (r.pareto ? "true" : "false");
+    for (const auto& a : r.against)
+        c << "," << benchNumber(a.meanErrors.rmsePercent, "%.6g") << ","
+          << benchNumber(worstOf(a.errors).second, "%.6g");
+    if (seeds) c << seedCsvRow(r);
+    c << "\n";
+}
+
+// bench.csv: one row per graph.
+std::string csvTable(const json& header, const std::vector<BenchResult>& results,
+                     const BandColumns& bandColumnList) {
+    std::ostringstream c;
+    const json* floor = floorOf(header, "reference");
+    const bool seeds = ranSeveralSeeds(results);
+    csvHeader(c, results, bandColumnList, seeds);
+    for (const auto& r : results) csvRow(c, r, bandColumnList, floor, seeds);
+    return c.str();
+}
+
+// The title and the paragraph that says what was run and how the figures were measured.
+void summaryParagraph(std::ostream& t, const json& header,
+                      const std::vector<BenchResult>& results) {
     const json& size = header["size"];
     t << "# " << header["name"].get<std::string>() << "\n\n"
       << "Device: " << header["device"]["name"].get<std::string>() << " ("
@@ -236,15 +251,18 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
       << ". Times are GPU medians over the "
       << "measured frames; errors are means over them; speedup is against the first graph ("
       << benchMarkdown(results.front().graph.label) << ") of the same run.";
-    if (seeds) {
+    if (ranSeveralSeeds(results)) {
         t << " Every graph ran once per seed (";
         const json& list = header.at("seeds");
         for (size_t i = 0; i < list.size(); ++i) t << (i ? ", " : "") << list[i];
         t << "): times are over the measured frames of all seeds, errors are the means over the "
              "seeds of each seed's mean, ± their standard error.";
     }
-    t << "\n\n"
-      << "| Graph | Output | Frame ms (median) | Speedup | RMSE % | PSNR dB | SSIM | ꟻLIP | "
+    t << "\n\n";
+}
+
+void summaryTable(std::ostream& t, const std::vector<BenchResult>& results) {
+    t << "| Graph | Output | Frame ms (median) | Speedup | RMSE % | PSNR dB | SSIM | ꟻLIP | "
          "Temporal error | Pareto "
          "|\n|---|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
     for (const auto& r : results) {
@@ -260,6 +278,10 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
     }
     t << "\nPareto: no other graph of this run is both faster (median frame ms) and closer to the "
          "reference (RMSE %); the front is marked in the plot.\n";
+}
+
+// One section per reference: the bench's own first, then each of `also_against`.
+void errorSections(std::ostream& t, const json& header, const std::vector<BenchResult>& results) {
     t << "\n## Error against the reference: noise floor, worst frame, layers\n\n";
     floorNote(t, header, "reference");
     std::vector<const json*> primary;
@@ -276,6 +298,10 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
         for (const auto& r : results) errors.push_back(&r.against[a].errors);
         errorTable(t, header, results, label, errors);
     }
+}
+
+void bandTable(std::ostream& t, const std::vector<BenchResult>& results,
+               const BandColumns& bandColumnList) {
     t << "\n## RMSE per eccentricity band (degrees from the gaze; mean over measured frames)\n\n"
       << "| Graph |";
     for (const auto& column : bandColumnList) t << " " << column.first << " |";
@@ -296,7 +322,9 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
                       : standardErrorSuffix(r.errors, kBandFigures[b], "%.5f"));
         t << " |\n";
     }
-    seedTables(t, results);
+}
+
+void passTable(std::ostream& t, const std::vector<BenchResult>& results) {
     t << "\n## GPU ms per pass (median over measured frames)\n\n"
       << "| Graph | Pass | Type | Median ms | Executions | Status (last frame) |\n"
       << "|---|---|---|---:|---:|---|\n";
@@ -305,15 +333,40 @@ void writeBenchTables(const OutputFolder& folder, const json& header,
             t << "| " << benchMarkdown(r.graph.label) << " | " << benchMarkdown(p.name) << " | "
               << benchMarkdown(p.type) << " | " << benchNumber(p.gpuMs.median, "%.3f") << " | "
               << p.executions << " | " << p.status << " |\n";
-    t << "\n![run time against error](bench.svg)\n";
-    folder.writeText("bench.md", t.str());
+}
 
-    // Written last: its presence and "finished" say that the folder is complete (as report.json).
+// bench.md: the summary, the error tables, the per-band and per-pass breakdowns.
+std::string markdownReport(const json& header, const std::vector<BenchResult>& results,
+                           const BandColumns& bandColumnList) {
+    std::ostringstream t;
+    summaryParagraph(t, header, results);
+    summaryTable(t, results);
+    errorSections(t, header, results);
+    bandTable(t, results, bandColumnList);
+    seedTables(t, results);
+    passTable(t, results);
+    t << "\n![run time against error](bench.svg)\n";
+    return t.str();
+}
+
+// bench.json: the header with every graph's results.
+std::string benchJson(const json& header, const std::vector<BenchResult>& results) {
     json all = header;
     all["graphs"] = json::array();
     for (const auto& r : results) all["graphs"].push_back(resultJson(r));
     all["finished"] = true;
-    folder.writeText("bench.json", all.dump(2) + "\n");
+    return all.dump(2) + "\n";
+}
+
+}  // namespace
+
+void writeBenchTables(const OutputFolder& folder, const json& header,
+                      const std::vector<BenchResult>& results) {
+    const BandColumns bandColumnList = bandColumns(results);
+    folder.writeText("bench.csv", csvTable(header, results, bandColumnList));
+    folder.writeText("bench.md", markdownReport(header, results, bandColumnList));
+    // Written last: its presence and "finished" say that the folder is complete (as report.json).
+    folder.writeText("bench.json", benchJson(header, results));
 }
 
 }  // namespace fovea::eval
