@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "core/scene/BuiltinScenes.h"
-#include "core/scene/GltfLoader.h"
+#include "core/scene/gltf/GltfLoader.h"
 #include "core/util/Error.h"
 #include "core/util/UserFile.h"
 

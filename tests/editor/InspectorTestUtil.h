@@ -3,7 +3,7 @@
 #pragma once
 #include <gtest/gtest.h>
 
-#include "tests/graph/CliTestUtil.h"
+#include "tests/cli/CliTestUtil.h"
 
 namespace fovea::clitest {
 

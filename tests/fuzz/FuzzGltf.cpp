@@ -6,7 +6,7 @@
 #include <cstring>
 
 #include "core/scene/Bvh.h"
-#include "core/scene/GltfLoader.h"
+#include "core/scene/gltf/GltfLoader.h"
 #include "core/scene/LightTable.h"
 #include "tests/fuzz/FuzzInput.h"
 

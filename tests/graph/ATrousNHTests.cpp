@@ -26,7 +26,7 @@
 #include "tests/graph/ATrousReference.h"
 #include "tests/graph/ATrousTestInputs.h"
 #include "tests/passes/FeedPass.h"
-#include "tests/unit/GpuTestFixture.h"
+#include "tests/graph/GpuTestFixture.h"
 
 using namespace fovea;
 using namespace fovea::graph;

@@ -27,7 +27,7 @@
 #include "passes/RegisterPasses.h"
 #include "tests/graph/ATrousTestInputs.h"
 #include "tests/passes/FeedPass.h"
-#include "tests/unit/GpuTestFixture.h"
+#include "tests/graph/GpuTestFixture.h"
 
 using namespace fovea;
 using namespace fovea::graph;

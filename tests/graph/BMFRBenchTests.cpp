@@ -18,7 +18,7 @@
 #include "core/scene/SceneGpu.h"
 #include "passes/BMFR/BMFRPass.h"
 #include "passes/RegisterPasses.h"
-#include "tests/unit/GpuTestFixture.h"
+#include "tests/graph/GpuTestFixture.h"
 
 using namespace fovea;
 using namespace fovea::graph;

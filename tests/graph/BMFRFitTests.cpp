@@ -1,4 +1,4 @@
-// BMFR phase II against the double-precision CPU oracle (tests/graph/BmfrOracle, Eigen): one
+// BMFR phase II against the double-precision CPU oracle (tests/graph/BMFROracle, Eigen): one
 // frame (phase I then passes the input through, phase III has no history), block offsets off so
 // blocks are the image's 32x32 tiles. Exact linear combinations of the features are reproduced
 // within 1e-3 relative; on noisy targets the residual is within 1% of the least-squares optimum;
@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "tests/graph/BmfrOracle.h"
-#include "tests/graph/BmfrTestUtil.h"
-#include "tests/unit/GpuTestFixture.h"
+#include "tests/graph/BMFROracle.h"
+#include "tests/graph/BMFRTestUtil.h"
+#include "tests/graph/GpuTestFixture.h"
 
 using namespace fovea;
 using namespace fovea::testbmfr;
@@ -25,7 +25,7 @@ using namespace fovea::testbmfr;
 namespace {
 
 constexpr int kFitSize = 64;  // 2x2 blocks
-// fovea's variant: its miss and edge rows are the oracle's (BmfrVariantTests.cpp checks the
+// fovea's variant: its miss and edge rows are the oracle's (BMFRVariantTests.cpp checks the
 // published variant against a port of the authors' code).
 const char* kNoOffsets = R"({ "blockOffsets": false, "variant": "fovea" })";
 

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "core/util/Error.h"
-#include "tests/graph/BmfrTestUtil.h"
-#include "tests/unit/GpuTestFixture.h"
+#include "tests/graph/BMFRTestUtil.h"
+#include "tests/graph/GpuTestFixture.h"
 
 using namespace fovea;
 using namespace fovea::testbmfr;

@@ -21,7 +21,7 @@
 #include "core/util/Error.h"
 #include "core/vk/Resources.h"
 #include "passes/RegisterPasses.h"
-#include "tests/unit/GpuTestFixture.h"
+#include "tests/graph/GpuTestFixture.h"
 
 using namespace fovea;
 using namespace fovea::graph;

@@ -22,7 +22,7 @@
 #include "core/scene/SceneGpu.h"
 #include "core/vk/Resources.h"
 #include "passes/RegisterPasses.h"
-#include "tests/unit/GpuTestFixture.h"
+#include "tests/graph/GpuTestFixture.h"
 
 using namespace fovea;
 using namespace fovea::graph;

@@ -18,7 +18,7 @@
 
 #include "core/image/ImageIO.h"
 #include "tests/graph/GoldenHarness.h"
-#include "tests/unit/GpuTestFixture.h"
+#include "tests/graph/GpuTestFixture.h"
 
 namespace fs = std::filesystem;
 using fovea::test::GoldenMode;

@@ -14,7 +14,7 @@
 #include "core/graph/PassRegistry.h"
 #include "core/graph/RenderGraph.h"
 #include "core/vk/Resources.h"
-#include "tests/unit/GpuTestFixture.h"
+#include "tests/graph/GpuTestFixture.h"
 
 using namespace fovea;
 using namespace fovea::graph;

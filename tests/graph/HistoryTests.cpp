@@ -16,7 +16,7 @@
 #include "core/vk/ComputePipeline.h"
 #include "core/vk/Resources.h"
 #include "tests/passes/FrameStampPass.h"
-#include "tests/unit/GpuTestFixture.h"
+#include "tests/graph/GpuTestFixture.h"
 
 using namespace fovea;
 using namespace fovea::graph;

@@ -35,7 +35,7 @@
 #include "passes/PathTrace/PathTracePass.h"
 #include "passes/RegisterPasses.h"
 #include "tests/graph/SceneGraphRig.h"
-#include "tests/unit/GpuTestFixture.h"
+#include "tests/graph/GpuTestFixture.h"
 
 using namespace fovea;
 using namespace fovea::graph;

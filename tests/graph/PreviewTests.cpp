@@ -23,7 +23,7 @@
 #include "core/vk/Resources.h"
 #include "passes/RegisterPasses.h"
 #include "tests/graph/SceneGraphRig.h"
-#include "tests/unit/GpuTestFixture.h"
+#include "tests/graph/GpuTestFixture.h"
 
 using namespace fovea;
 using namespace fovea::graph;

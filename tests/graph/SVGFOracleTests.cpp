@@ -1,4 +1,4 @@
-// SVGF against closed forms and its double-precision CPU twin (tests/graph/SvgfOracle.h):
+// SVGF against closed forms and its double-precision CPU twin (tests/graph/SVGFOracle.h):
 // the exact running mean while 1/h >= alpha then the EMA (§4.1), the steady-state variance
 // alpha/(2-alpha) sigma^2 of that EMA, one a-trous level with edge stopping off = the dilated
 // B3-spline convolution (a delta gives the symmetric separable kernel), partition of unity, and
@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "core/util/Error.h"
-#include "tests/graph/SvgfOracle.h"
-#include "tests/graph/SvgfTestUtil.h"
-#include "tests/unit/GpuTestFixture.h"
+#include "tests/graph/SVGFOracle.h"
+#include "tests/graph/SVGFTestUtil.h"
+#include "tests/graph/GpuTestFixture.h"
 
 using namespace fovea;
 using namespace fovea::testsvgf;

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "tests/graph/SvgfTestUtil.h"
-#include "tests/unit/GpuTestFixture.h"
+#include "tests/graph/SVGFTestUtil.h"
+#include "tests/graph/GpuTestFixture.h"
 
 using namespace fovea;
 using namespace fovea::testsvgf;

@@ -11,7 +11,7 @@
 #include "core/graph/PassRegistry.h"
 #include "core/graph/RenderGraph.h"
 #include "core/scene/SceneGpu.h"
-#include "tests/unit/GpuTestFixture.h"
+#include "tests/graph/GpuTestFixture.h"
 
 namespace fovea::test {
 

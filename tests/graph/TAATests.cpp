@@ -25,7 +25,7 @@
 #include "passes/RegisterPasses.h"
 #include "passes/TAA/TAAPass.h"
 #include "tests/passes/FeedPass.h"
-#include "tests/unit/GpuTestFixture.h"
+#include "tests/graph/GpuTestFixture.h"
 
 using namespace fovea;
 using namespace fovea::graph;

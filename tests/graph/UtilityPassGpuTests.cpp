@@ -26,7 +26,7 @@
 #include "core/vk/Resources.h"
 #include "passes/ImageSource/ImageSourcePass.h"
 #include "passes/RegisterPasses.h"
-#include "tests/unit/GpuTestFixture.h"
+#include "tests/graph/GpuTestFixture.h"
 
 namespace fs = std::filesystem;
 using namespace fovea;

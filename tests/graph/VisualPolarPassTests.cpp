@@ -29,7 +29,7 @@
 #include "passes/RegisterPasses.h"
 #include "passes/Unwarp/UnwarpPass.h"
 #include "passes/VisualPolarWarp/VisualPolarWarpPass.h"
-#include "tests/unit/GpuTestFixture.h"
+#include "tests/graph/GpuTestFixture.h"
 
 using namespace fovea;
 using namespace fovea::graph;

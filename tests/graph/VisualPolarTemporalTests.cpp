@@ -26,7 +26,7 @@
 #include "passes/SVGF/SVGFPass.h"
 #include "passes/TAA/TAAPass.h"
 #include "passes/VisualPolarWarp/VisualPolarWarpPass.h"
-#include "tests/unit/GpuTestFixture.h"
+#include "tests/graph/GpuTestFixture.h"
 
 using namespace fovea;
 using namespace fovea::graph;

@@ -1,4 +1,4 @@
-// Libraries `fovea --plugin` must refuse (tests/graph/CliPluginTests.cpp), one per kind of
+// Libraries `fovea --plugin` must refuse (tests/cli/CliPluginTests.cpp), one per kind of
 // refusal, selected by a definition. They include no fovea header: each defines only what its
 // refusal needs, so they build in a moment.
 #if defined(FOVEA_BAD_PLUGIN_WRONG_ABI)

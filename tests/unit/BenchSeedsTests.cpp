@@ -1,7 +1,7 @@
 // The statistics of `fovea bench` over several seeds (eval/bench/BenchSeeds.cpp, docs/bench.md
 // "Several seeds") on numbers worked out by hand: the mean over the seeds, the standard error
 // (sample standard deviation / sqrt(seeds)), the paired difference and its > 2 s.e. flag. The
-// end-to-end run is tests/graph/CliBenchSeedsTests.cpp.
+// end-to-end run is tests/cli/CliBenchSeedsTests.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>

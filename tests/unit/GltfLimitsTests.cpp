@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "core/scene/GltfLoader.h"
+#include "core/scene/gltf/GltfLoader.h"
 #include "core/util/Error.h"
 #include "tests/unit/Base64.h"
 

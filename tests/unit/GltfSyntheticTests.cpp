@@ -16,7 +16,7 @@
 #include <set>
 
 #include "core/graph/Pass.h"
-#include "core/scene/GltfLoader.h"
+#include "core/scene/gltf/GltfLoader.h"
 #include "core/scene/SceneLoader.h"
 #include "core/util/Error.h"
 #include "tests/unit/Base64.h"

@@ -9,7 +9,7 @@
 #include <iostream>
 #include <string>
 
-#include "core/scene/GltfLoader.h"
+#include "core/scene/gltf/GltfLoader.h"
 #include "core/scene/SceneLoader.h"
 #include "core/util/Error.h"
 

@@ -18,7 +18,7 @@
 
 #include "core/graph/Pass.h"
 #include "core/scene/BuiltinScenes.h"
-#include "core/scene/GltfLoader.h"
+#include "core/scene/gltf/GltfLoader.h"
 #include "core/scene/SceneLoader.h"
 #include "core/util/Error.h"
 #include "tests/unit/SceneLoadTestUtil.h"
