@@ -9,7 +9,7 @@
 #include "core/util/Error.h"
 #include "core/util/UserFile.h"
 
-// Compiled here with static linkage, like core/scene/GltfTextures.cpp's copy, so no other
+// Compiled here with static linkage, like core/scene/gltf/GltfTextures.cpp's copy, so no other
 // library's stb can clash with it.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wall"

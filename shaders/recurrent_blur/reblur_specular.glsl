@@ -1,5 +1,5 @@
 // The specular half of ReBLUR (seed 004, "Cooking specular denoiser"; issue 26): the formulas
-// RecurrentBlur{signal: specular} and its tests share (tests/graph/ReBLURSpecularOracleTests.cpp
+// RecurrentBlur{signal: specular} and its tests share (tests/graph/RecurrentBlurSpecularOracleTests.cpp
 // checks each against a double-precision CPU version on a grid). Roughness is linear (glTF
 // roughness), m = roughness^2 (seed 004 "Definitions"). Directions are world-space unit vectors;
 // V points from the surface to the eye.

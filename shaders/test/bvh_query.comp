@@ -1,5 +1,5 @@
 #version 460
-// Test shader: closest-hit and occlusion queries for a buffer of rays (tests/unit/BvhTests.cpp).
+// Test shader: closest-hit and occlusion queries for a buffer of rays (tests/graph/BvhTests.cpp).
 // hits[i] = (t, triangle as uint bits, barycentric u, v); a miss has triangle kBvhNoHit.
 #extension GL_GOOGLE_include_directive : require
 layout(local_size_x = 64) in;

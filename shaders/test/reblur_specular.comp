@@ -1,6 +1,6 @@
 #version 460
 // Test shader: the formulas of recurrent_blur/reblur_specular.glsl on a grid of inputs
-// (tests/graph/ReBLURSpecularOracleTests.cpp compares them with a double-precision CPU version).
+// (tests/graph/RecurrentBlurSpecularOracleTests.cpp compares them with a double-precision CPU version).
 #extension GL_GOOGLE_include_directive : require
 layout(local_size_x = 64) in;
 

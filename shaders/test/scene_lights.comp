@@ -1,6 +1,6 @@
 #version 460
 // Test shader: sceneSampleLight from one point with hashed random numbers, plus the MIS pdf
-// sceneEmitterPdf recomputes for the sampled point (tests/unit/BvhTests.cpp).
+// sceneEmitterPdf recomputes for the sampled point (tests/graph/BvhTests.cpp).
 // out[2i] = (light as uint bits, pdf, sceneEmitterPdf or 0 for delta lights, valid 0/1)
 // out[2i+1] = (direction, distance)
 #extension GL_GOOGLE_include_directive : require

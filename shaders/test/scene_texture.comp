@@ -1,5 +1,5 @@
 #version 460
-// Test shader: sceneSampleTexture and sceneMaterial at given uvs (tests/unit/SceneGpuTests.cpp).
+// Test shader: sceneSampleTexture and sceneMaterial at given uvs (tests/graph/SceneGpuTests.cpp).
 // query = (u, v, texture index as int bits, srgb 0/1); with MATERIAL_QUERY the third component
 // is a material index and the result is (baseColor.rgb, roughness); with VIEW_QUERY it is a
 // material index, the fourth a texture slot, and the result that slot's texture read through its

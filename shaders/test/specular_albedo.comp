@@ -1,5 +1,5 @@
 #version 460
-// Test shader: specularAlbedoTerms at given (NoV, roughness) (tests/unit/SpecularAlbedoTests.cpp).
+// Test shader: specularAlbedoTerms at given (NoV, roughness) (tests/graph/SpecularAlbedoTests.cpp).
 #extension GL_GOOGLE_include_directive : require
 layout(local_size_x = 64) in;
 
