@@ -129,9 +129,11 @@ TEST(CliImageFile, ShippedDenoiseGraphRunsFromAnyWorkingDirectory) {
     EXPECT_TRUE(fs::exists(tmp / "d1" / "tm.ldr.frame0001.png"));
     // The pass contract: ImageFile's staging copy and ATrousNH's indirect arguments are graph
     // fields, so no pass of either run allocates device memory itself.
-    for (const char* out : {"d1", "out/pathtrace_seq"})
-        for (const auto& p : readReport(tmp / out).at("passes"))
+    for (const char* out : {"d1", "out/pathtrace_seq"}) {
+        const json report = readReport(tmp / out);  // a named object: the loop reads into it
+        for (const auto& p : report.at("passes"))
             EXPECT_EQ(p.at("allocations_outside_plan"), 0) << out << ": " << p.at("name");
+    }
 }
 
 TEST(CliImageFile, BadFilesAreInputErrorsNamingTheFile) {
