@@ -79,8 +79,9 @@ struct GainInputs {
     double r0 = 0, r1 = 0, p = 0.5, vpReduction = 0.61, vpFoveaFraction = 0.24, fvBudget = 0;
 };
 
-GainInputs parseInputs(const GainOptions& o) {
-    GainInputs in;
+// --preset, --shape, --fov-deg, --resolution, --cpd and --gaze-deg: the display, with where
+// each value came from.
+void parseDisplay(const GainOptions& o, GainInputs& in) {
     if (!o.preset.empty()) {
         std::vector<std::pair<std::string, const sampling::DisplayPreset*>> presets;
         for (const auto& p : sampling::displayPresets()) presets.push_back({p.name, &p});
@@ -138,6 +139,11 @@ GainInputs parseInputs(const GainOptions& o) {
         const auto g = parsePair(o.gaze, "--gaze-deg", false, false);
         d.gazeDeg = {g[0], g[1]};
     }
+}
+
+// --measure and --density, then the model's own checks of the display.
+void parseModel(const GainOptions& o, GainInputs& in) {
+    const DisplayModel& d = in.display;
     in.model.measure = choose<sampling::AreaMeasure>(
         o.measure, "--measure",
         {{"flat", sampling::AreaMeasure::Flat}, {"solid", sampling::AreaMeasure::Solid}});
@@ -158,6 +164,12 @@ GainInputs parseInputs(const GainOptions& o) {
         if (startsWith("cycles")) option = o.cpd.empty() ? "--resolution" : "--cpd";
         throw InputError(option + ": " + what);
     }
+}
+
+// The pipelines' parameters the gains are computed for: Peres r0/r1/p, Visual-Polar reduction
+// and fovea fraction, the foveated-preview budget.
+void parsePipelineParameters(const GainOptions& o, GainInputs& in) {
+    const DisplayModel& d = in.display;
     // Seed 000 Table 1's radii (144 / 288 px at 1080 rows) scaled by the eye height, as the
     // pipelines do (docs/pipelines.md), unless given.
     const double scale = d.height / sampling::kPeresTable1Rows;
@@ -182,6 +194,13 @@ GainInputs parseInputs(const GainOptions& o) {
                 sampling::kVisualPolarMinFoveaFraction, 0.5, false, "--vp-fovea-fraction");
     in.fvBudget =
         checked(parseNumber(o.fvBudget, "--fv-budget"), 0.0, kMaxBudget, false, "--fv-budget");
+}
+
+GainInputs parseInputs(const GainOptions& o) {
+    GainInputs in;
+    parseDisplay(o, in);
+    parseModel(o, in);
+    parsePipelineParameters(o, in);
     in.asPublished = in.preset && o.fov.empty() && o.shape.empty() && o.cpd.empty() &&
                      o.resolution.empty() && o.gaze.empty() &&
                      in.model.measure == sampling::AreaMeasure::Flat &&

@@ -252,9 +252,34 @@ void ATrousNHPass::execute(graph::ExecuteContext& ctx) {
     const int width = int(out.width()), height = int(out.height());
     const auto [eyes, eyeWidth] = scene::splitEyes(out.width(), mEyes, ctx.camera().eyeCount);
     const auto schedule = buildATrousSchedule(scheduleOptions(width, height, eyes));
+    setFilterConstants(ctx, glm::ivec2(width, height), eyes, eyeWidth);
 
+    // Main levels ping-pong between ping and `denoised`, ending in `denoised`; their count is
+    // fixed by the parameters. Full screen, or (tiles) only over the tiles that need them.
+    size_t mainLevels = 0;
+    while (mainLevels < schedule.size() && !schedule[mainLevels].fill) ++mainLevels;
+    const bool anyFill = mainLevels < schedule.size();
+    const auto keys = levelTileKeys(schedule, mLayers, mUseTiles);
+    uint32_t usedKeys = 0;
+    for (uint32_t k : keys) usedKeys |= k != 0 ? 1u << k : 0u;
+    if (usedKeys != 0) buildTileLists(ctx, usedKeys);
+    mPipeline->bind("atrous_fill", ctx.buffer("fill_state"))
+        .bind("atrous_tiles", ctx.buffer("tiles"));
+    mFillArgs->bind("atrous_fill", ctx.buffer("fill_state"));
+    if (anyFill) {
+        // Last frame's indirect reads are ordered before this by the graph's barrier at the
+        // start of the frame (it covers indirect-argument reads of `indirect()` fields).
+        dispatchFillArgs(ctx, kResetCounters);
+        gpu::computeToComputeBarrier(ctx.cmd());
+    }
+    runMainLevels(ctx, schedule, keys, mainLevels, anyFill);
+    if (anyFill) runFillLevels(ctx, schedule, mainLevels);
+}
+
+void ATrousNHPass::setFilterConstants(graph::ExecuteContext& ctx, glm::ivec2 size, int eyes,
+                                      int eyeWidth) {
     ctx.bindFields(*mPipeline);
-    mPipeline->set("size", glm::ivec2(width, height))
+    mPipeline->set("size", size)
         .set("eyeWidth", eyeWidth)
         .set("eyes", eyes)
         .set("layerCount", mLayers)
@@ -269,31 +294,20 @@ void ATrousNHPass::execute(graph::ExecuteContext& ctx) {
         .set("tileKey", 0)
         .set("tileStride", int(mTileCount))
         .set("alsoDst", -1);
+}
 
-    // Main levels ping-pong between ping and `denoised`, ending in `denoised`; their count is
-    // fixed by the parameters. Full screen, or (tiles) only over the tiles that need them.
-    size_t mainLevels = 0;
-    while (mainLevels < schedule.size() && !schedule[mainLevels].fill) ++mainLevels;
-    const bool anyFill = mainLevels < schedule.size();
-    const auto keys = levelTileKeys(schedule, mLayers, mUseTiles);
-    uint32_t usedKeys = 0;
-    for (uint32_t k : keys) usedKeys |= k != 0 ? 1u << k : 0u;
-    if (usedKeys != 0) buildTileLists(ctx, usedKeys);
+void ATrousNHPass::dispatchFillArgs(graph::ExecuteContext& ctx, int mode) {
+    const auto& out = ctx.image("denoised");
     const auto groups = mPipeline->groupCount(out.width(), out.height());
-    const gpu::Buffer& fillState = ctx.buffer("fill_state");
-    const gpu::Buffer& tiles = ctx.buffer("tiles");
-    mPipeline->bind("atrous_fill", fillState).bind("atrous_tiles", tiles);
-    mFillArgs->bind("atrous_fill", fillState);
-    auto fillArgs = [&](FillArgsMode mode) {
-        mFillArgs->set("mode", int(mode)).set("fullGroups", glm::ivec2(groups[0], groups[1]));
-        mFillArgs->dispatch(ctx.cmd(), 1);
-    };
-    if (anyFill) {
-        // Last frame's indirect reads are done before the counters are reset.
-        gpu::computeToIndirectBarrier(ctx.cmd());
-        fillArgs(kResetCounters);
-        gpu::computeToComputeBarrier(ctx.cmd());
-    }
+    mFillArgs->set("mode", mode).set("fullGroups", glm::ivec2(groups[0], groups[1]));
+    mFillArgs->dispatch(ctx.cmd(), 1);
+}
+
+void ATrousNHPass::runMainLevels(graph::ExecuteContext& ctx,
+                                 const std::vector<ATrousDispatch>& schedule,
+                                 const std::vector<uint32_t>& keys, size_t mainLevels,
+                                 bool anyFill) {
+    const auto& out = ctx.image("denoised");
     int src = kInput;
     for (size_t i = 0; i < mainLevels; ++i) {
         const bool last = i + 1 == mainLevels;
@@ -310,11 +324,17 @@ void ATrousNHPass::execute(graph::ExecuteContext& ctx) {
         if (keys[i] == 0)
             mPipeline->dispatch(ctx.cmd(), out.width(), out.height());
         else
-            mPipeline->dispatchIndirect(ctx.cmd(), tiles, vk::DeviceSize(keys[i]) * 16);
+            mPipeline->dispatchIndirect(ctx.cmd(), ctx.buffer("tiles"),
+                                        vk::DeviceSize(keys[i]) * 16);
         src = dst == kPing ? kPing : kDenoisedSource;
     }
     mPipeline->set("tileKey", 0).set("alsoDst", -1);
-    if (!anyFill) return;
+}
+
+void ATrousNHPass::runFillLevels(graph::ExecuteContext& ctx,
+                                 const std::vector<ATrousDispatch>& schedule, size_t mainLevels) {
+    const auto& out = ctx.image("denoised");
+    const gpu::Buffer& fillState = ctx.buffer("fill_state");
     if (mainLevels == 0) {
         // No main level: a copy brings the input into `denoised` and counts its holes.
         mPipeline->set("src", kInput)
@@ -332,7 +352,7 @@ void ATrousNHPass::execute(graph::ExecuteContext& ctx) {
     for (size_t i = mainLevels; i < schedule.size(); ++i) {
         const bool even = (i - mainLevels) % 2 == 0;
         gpu::computeToIndirectBarrier(ctx.cmd());
-        fillArgs(kFillLevelArgs);
+        dispatchFillArgs(ctx, kFillLevelArgs);
         gpu::computeToIndirectBarrier(ctx.cmd());
         mPipeline->set("src", even ? kDenoisedSource : kPing)
             .set("dst", even ? kPing : kDenoised)
@@ -343,7 +363,7 @@ void ATrousNHPass::execute(graph::ExecuteContext& ctx) {
         mPipeline->dispatchIndirect(ctx.cmd(), fillState, kFillArgsOffset);
     }
     gpu::computeToIndirectBarrier(ctx.cmd());
-    fillArgs(kCopyBackArgs);
+    dispatchFillArgs(ctx, kCopyBackArgs);
     gpu::computeToIndirectBarrier(ctx.cmd());
     mPipeline->set("src", kPing)
         .set("dst", kDenoised)

@@ -3,6 +3,7 @@
 // weights, per-layer iteration counts, decreasing step width, both eyes in one dispatch. With one
 // layer and no mask it is the classic full-screen à-trous (the Base pipeline's denoiser).
 #pragma once
+#include <glm/vec2.hpp>
 #include <memory>
 #include <string>
 #include <vector>
@@ -59,6 +60,14 @@ private:
     // Layer-restricted levels (dispatch = tiles, mask, >= 2 layers): per-key tile lists built by
     // tile_lists.comp, cached until the mask input's version (or image) changes.
     void buildTileLists(graph::ExecuteContext& ctx, uint32_t keys);
+    // execute() in steps: the push constants every level shares, the main levels (full screen
+    // or over tile lists), the GPU-driven fill levels and their copy-back.
+    void setFilterConstants(graph::ExecuteContext& ctx, glm::ivec2 size, int eyes, int eyeWidth);
+    void dispatchFillArgs(graph::ExecuteContext& ctx, int mode);  // fill_args.comp, one thread
+    void runMainLevels(graph::ExecuteContext& ctx, const std::vector<ATrousDispatch>& schedule,
+                       const std::vector<uint32_t>& keys, size_t mainLevels, bool anyFill);
+    void runFillLevels(graph::ExecuteContext& ctx, const std::vector<ATrousDispatch>& schedule,
+                       size_t mainLevels);
     bool mUseTiles = false;
     std::unique_ptr<gpu::ComputePipeline> mTileLists;
     uint32_t mTileCount = 0;
