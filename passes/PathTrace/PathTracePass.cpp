@@ -77,7 +77,8 @@ void PathTracePass::params(graph::ParamVisitor& v) {
           "Blender Cycles does: darker light at grazing angles to the surface; false = plain "
           "glTF shading with the bent normal. Nothing changes without normal textures");
     v.add("countRays", mCountRays, false,
-          "benchmarks: count every traced ray by kind (atomic counters; rayCounts())");
+          "benchmarks: count every traced ray by kind (atomic counters in the `rays` field; "
+          "report.json statistics)");
 }
 
 namespace {
