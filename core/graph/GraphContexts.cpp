@@ -104,6 +104,18 @@ std::optional<uint64_t> GraphExecuteContext::inputVersion(const std::string& inp
     return mGraph.inputVersionFor(mNode, input);
 }
 
+void GraphExecuteContext::dispatch(gpu::ComputePipeline& pipeline, uint32_t threadsX,
+                                   uint32_t threadsY, uint32_t threadsZ) {
+    mHazards.beforeDispatch(mCmd, pipeline);
+    pipeline.dispatch(mCmd, threadsX, threadsY, threadsZ);
+}
+
+void GraphExecuteContext::dispatchIndirect(gpu::ComputePipeline& pipeline, const gpu::Buffer& args,
+                                           vk::DeviceSize offset) {
+    mHazards.beforeDispatch(mCmd, pipeline, args.buffer());
+    pipeline.dispatchIndirect(mCmd, args, offset);
+}
+
 void GraphExecuteContext::bindFields(gpu::ComputePipeline& pipeline) {
     const PassNode& node = mPlan.nodes[mNode];
     if (pipeline.hasBinding("camera_info")) pipeline.bind("camera_info", mGraph.cameraBuffer());

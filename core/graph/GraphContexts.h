@@ -2,6 +2,7 @@
 #pragma once
 #include "core/graph/GraphPlan.h"
 #include "core/graph/Pass.h"
+#include "core/vk/DispatchHazards.h"
 #include "core/vk/ShaderReflection.h"
 
 namespace fovea::graph {
@@ -49,6 +50,12 @@ public:
                    const std::string& field) override;
     const scene::SceneGpu* scene() const override;
     const scene::FrameCamera& camera() const override;
+    void dispatch(gpu::ComputePipeline& pipeline, uint32_t threadsX, uint32_t threadsY,
+                  uint32_t threadsZ) override;
+    void dispatchIndirect(gpu::ComputePipeline& pipeline, const gpu::Buffer& args,
+                          vk::DeviceSize offset) override;
+    // What this execution dispatched and the barriers derived between its dispatches.
+    const gpu::DispatchHazards& hazards() const { return mHazards; }
 
 private:
     void bindResource(gpu::ComputePipeline& pipeline, const gpu::ShaderBinding& binding,
@@ -58,6 +65,7 @@ private:
     size_t mNode;
     const vk::raii::CommandBuffer& mCmd;
     const FrameInfo& mFrame;
+    gpu::DispatchHazards mHazards;
 };
 
 }  // namespace fovea::graph

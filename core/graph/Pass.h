@@ -1,7 +1,8 @@
 // The pass contract. Every technique in fovea is a Pass: it declares parameters (params),
 // resources (reflect), what it needs from the scene (sceneNeeds), builds pipelines once sizes and
 // formats are final (compile), records commands (execute), and says when it may be skipped
-// (isActive + bypass, cacheable). Barriers, allocation and history are the graph's job.
+// (isActive + bypass, cacheable). Barriers (between passes and between one pass's dispatches),
+// allocation and history are the graph's job.
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -123,6 +124,17 @@ public:
     // The scene (null without one) and this frame's camera (a default one without a scene).
     virtual const scene::SceneGpu* scene() const = 0;
     virtual const scene::FrameCamera& camera() const = 0;
+    // Records `pipeline`'s dispatch over threadsX x threadsY x threadsZ threads (its staged
+    // bindings and push constants), preceded by the barrier those bindings need against this
+    // pass's earlier dispatches in this frame (gpu::DispatchHazards: read or write after write,
+    // write after read, indirect arguments). A pass dispatches through here and records no
+    // barrier itself: the graph orders passes, the context orders a pass's dispatches.
+    virtual void dispatch(gpu::ComputePipeline& pipeline, uint32_t threadsX, uint32_t threadsY = 1,
+                          uint32_t threadsZ = 1) = 0;
+    // The same with the group counts read from `args` at `offset` (ComputePipeline::
+    // dispatchIndirect); a dispatch that wrote `args` earlier in the pass is waited for.
+    virtual void dispatchIndirect(gpu::ComputePipeline& pipeline, const gpu::Buffer& args,
+                                  vk::DeviceSize offset = 0) = 0;
 };
 
 // What Pass::statistics may read: the device and the pass's own buffer fields.

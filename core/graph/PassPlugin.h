@@ -20,7 +20,7 @@
 
 // Bumped by hand whenever a header a plugin compiles against changes layout or a virtual
 // signature (Pass, Reflection, ParamVisitor, the contexts); with fovea's version it names the ABI.
-#define FOVEA_PLUGIN_ABI_REVISION "1"
+#define FOVEA_PLUGIN_ABI_REVISION "2"
 #define FOVEA_PLUGIN_ABI_STRINGIFY2(x) #x
 #define FOVEA_PLUGIN_ABI_STRINGIFY(x) FOVEA_PLUGIN_ABI_STRINGIFY2(x)
 // std::string's layout differs between libstdc++'s two ABIs: part of the check.

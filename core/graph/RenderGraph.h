@@ -40,6 +40,10 @@ struct PassRecord {
     // was built: memory the plan, `validate --dump` and the memory totals cannot see. The pass
     // contract says 0 (declare a buffer field instead); report.json lists it per pass.
     uint64_t allocationsOutsidePlan = 0;
+    // Since the graph was built: dispatches the pass recorded through ExecuteContext::dispatch,
+    // and the barriers the graph derived between them (gpu::DispatchHazards).
+    uint64_t dispatches = 0;
+    uint64_t barriersInPass = 0;
 };
 
 struct FrameTiming {

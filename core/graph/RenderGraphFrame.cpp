@@ -170,6 +170,8 @@ void RenderGraph::recordPass(const vk::raii::CommandBuffer& cmd, size_t n, doubl
     auto t0 = Clock::now();
     attributeAllocations(n, [&] { node.pass->execute(ctx); });
     passCpuMs += msSince(t0);
+    record.dispatches += ctx.hazards().dispatches();
+    record.barriersInPass += ctx.hazards().barriers();
     bumpOutputs();
     record.status = PassStatus::Executed;
     record.reason.clear();

@@ -243,6 +243,25 @@ void ComputePipeline::recordState(const vk::raii::CommandBuffer& cmd) {
                                    mPushData);
 }
 
+std::vector<ResourceAccess> ComputePipeline::accesses() const {
+    std::vector<ResourceAccess> out;
+    out.reserve(mStaged.size());
+    for (size_t i = 0; i < mStaged.size(); ++i) {
+        if (!mStaged[i].bound) continue;
+        const ShaderBinding& b = mInterface.bindings[i];
+        ResourceAccess a;
+        a.image = b.kind == DescriptorKind::StorageImage || b.kind == DescriptorKind::SampledImage;
+        a.handle = a.image ? uint64_t(VkImageView(mStaged[i].image.imageView))
+                           : uint64_t(VkBuffer(mStaged[i].buffer.buffer));
+        const bool storage =
+            b.kind == DescriptorKind::StorageImage || b.kind == DescriptorKind::StorageBuffer;
+        a.read = !storage || !b.writeonly;
+        a.write = storage && !b.readonly;
+        out.push_back(a);
+    }
+    return out;
+}
+
 void ComputePipeline::dispatch(const vk::raii::CommandBuffer& cmd, uint32_t threadsX,
                                uint32_t threadsY, uint32_t threadsZ) {
     const auto groups = groupCount(threadsX, threadsY, threadsZ);

@@ -21,6 +21,15 @@ class Context;
 class Image;
 class Buffer;
 
+// One resource a dispatch touches through a staged binding: what DispatchHazards compares to
+// derive the barrier between two dispatches. `handle` is the VkImageView or VkBuffer (images and
+// buffers apart: handles of different types may share a value).
+struct ResourceAccess {
+    uint64_t handle = 0;
+    bool image = false;
+    bool read = false, write = false;
+};
+
 class ComputePipeline {
 public:
     // Compiles (through the context's cached compiler), reflects and creates the pipeline.
@@ -81,6 +90,10 @@ public:
     // that runs: how a pass skips work the GPU decided is not needed (no read-back).
     void dispatchIndirect(const vk::raii::CommandBuffer& cmd, const Buffer& args,
                           vk::DeviceSize offset = 0);
+    // The resources the next dispatch touches: sampled images and uniform buffers are read;
+    // storage images and buffers are read unless `writeonly` and written unless `readonly` (the
+    // shader's qualifiers, as reflected). Unbound bindings are left out (dispatch throws).
+    std::vector<ResourceAccess> accesses() const;
     std::array<uint32_t, 3> groupCount(uint32_t threadsX, uint32_t threadsY = 1,
                                        uint32_t threadsZ = 1) const;
 

@@ -38,6 +38,9 @@ nlohmann::json buildReport(const graph::RenderGraph& graph, const ReportInputs& 
                   {"executions", rec.executions},
                   // Memory the pass allocated itself, invisible to the plan (contract: 0).
                   {"allocations_outside_plan", rec.allocationsOutsidePlan},
+                  // Dispatches since the build, and the barriers the graph derived between them.
+                  {"dispatches", rec.dispatches},
+                  {"barriers_in_pass", rec.barriersInPass},
                   {"gpu_ms", statsJson(computeStats(rec.gpuMs))}};
         // Which shader specialization ran (scene features, BRDF, ...), for passes that have one.
         if (node.pass) {

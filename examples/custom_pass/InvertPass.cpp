@@ -18,5 +18,5 @@ void InvertPass::execute(fovea::graph::ExecuteContext& ctx) {
     const auto& out = ctx.image("result");
     ctx.bindFields(*mPipeline);
     mPipeline->set("size", glm::ivec2(out.width(), out.height())).set("white", mWhite);
-    mPipeline->dispatch(ctx.cmd(), out.width(), out.height());
+    ctx.dispatch(*mPipeline, out.width(), out.height());
 }

@@ -4,7 +4,6 @@
 #include <glm/vec2.hpp>
 
 #include "core/scene/Camera.h"
-#include "core/vk/Barriers.h"
 #include "core/vk/ComputePipeline.h"
 #include "core/vk/Resources.h"
 
@@ -233,13 +232,11 @@ void ATrousNHPass::buildTileLists(graph::ExecuteContext& ctx, uint32_t keys) {
         .set("tileStride", int(mTileCount))
         .set("keys", int(keys));
     // Last frame's indirect reads of the lists are ordered before this by the graph's barrier
-    // at the start of the frame (it covers indirect-argument reads of `indirect()` fields).
-    mTileLists->set("mode", int(kResetTiles)).dispatch(ctx.cmd(), 1);
-    gpu::computeToComputeBarrier(ctx.cmd());
-    mTileLists->set("mode", int(kBuildTiles)).dispatch(ctx.cmd(), out.width(), out.height());
-    gpu::computeToComputeBarrier(ctx.cmd());
-    mTileLists->set("mode", int(kFinalizeTiles)).dispatch(ctx.cmd(), 1);
-    gpu::computeToIndirectBarrier(ctx.cmd());
+    // at the start of the frame (it covers indirect-argument reads of `indirect()` fields); the
+    // context orders the three steps and the levels that read the lists after them.
+    ctx.dispatch(mTileLists->set("mode", int(kResetTiles)), 1);
+    ctx.dispatch(mTileLists->set("mode", int(kBuildTiles)), out.width(), out.height());
+    ctx.dispatch(mTileLists->set("mode", int(kFinalizeTiles)), 1);
     mTilesBuilt = true;
     mTileVersion = version.value_or(0);
     mTileMaskImage = maskImage;
@@ -270,7 +267,6 @@ void ATrousNHPass::execute(graph::ExecuteContext& ctx) {
         // Last frame's indirect reads are ordered before this by the graph's barrier at the
         // start of the frame (it covers indirect-argument reads of `indirect()` fields).
         dispatchFillArgs(ctx, kResetCounters);
-        gpu::computeToComputeBarrier(ctx.cmd());
     }
     runMainLevels(ctx, schedule, keys, mainLevels, anyFill);
     if (anyFill) runFillLevels(ctx, schedule, mainLevels);
@@ -300,7 +296,7 @@ void ATrousNHPass::dispatchFillArgs(graph::ExecuteContext& ctx, int mode) {
     const auto& out = ctx.image("denoised");
     const auto groups = mPipeline->groupCount(out.width(), out.height());
     mFillArgs->set("mode", mode).set("fullGroups", glm::ivec2(groups[0], groups[1]));
-    mFillArgs->dispatch(ctx.cmd(), 1);
+    ctx.dispatch(*mFillArgs, 1);
 }
 
 void ATrousNHPass::runMainLevels(graph::ExecuteContext& ctx,
@@ -312,7 +308,6 @@ void ATrousNHPass::runMainLevels(graph::ExecuteContext& ctx,
     for (size_t i = 0; i < mainLevels; ++i) {
         const bool last = i + 1 == mainLevels;
         const int dst = (mainLevels - 1 - i) % 2 == 0 ? kDenoised : kPing;
-        if (i > 0) gpu::computeToComputeBarrier(ctx.cmd());
         mPipeline->set("src", src)
             .set("dst", dst)
             .set("activeLayers", int(schedule[i].layers))
@@ -322,10 +317,9 @@ void ATrousNHPass::runMainLevels(graph::ExecuteContext& ctx,
             .set("tileKey", int(keys[i]))
             .set("alsoDst", mUseTiles && i == 0 && !last ? (dst == kPing ? kDenoised : kPing) : -1);
         if (keys[i] == 0)
-            mPipeline->dispatch(ctx.cmd(), out.width(), out.height());
+            ctx.dispatch(*mPipeline, out.width(), out.height());
         else
-            mPipeline->dispatchIndirect(ctx.cmd(), ctx.buffer("tiles"),
-                                        vk::DeviceSize(keys[i]) * 16);
+            ctx.dispatchIndirect(*mPipeline, ctx.buffer("tiles"), vk::DeviceSize(keys[i]) * 16);
         src = dst == kPing ? kPing : kDenoisedSource;
     }
     mPipeline->set("tileKey", 0).set("alsoDst", -1);
@@ -343,7 +337,7 @@ void ATrousNHPass::runFillLevels(graph::ExecuteContext& ctx,
             .set("stepWidth", 1)
             .set("fillOnly", 0)
             .set("countHoles", 1);
-        mPipeline->dispatch(ctx.cmd(), out.width(), out.height());
+        ctx.dispatch(*mPipeline, out.width(), out.height());
     }
     // Fill levels alternate denoised -> ping -> denoised ...; each runs only while the previous
     // level left a hole (fill_args.comp writes 0 groups otherwise), so the levels that run are a
@@ -351,26 +345,22 @@ void ATrousNHPass::runFillLevels(graph::ExecuteContext& ctx,
     // The output equals running every fill level (a level without holes only copies).
     for (size_t i = mainLevels; i < schedule.size(); ++i) {
         const bool even = (i - mainLevels) % 2 == 0;
-        gpu::computeToIndirectBarrier(ctx.cmd());
         dispatchFillArgs(ctx, kFillLevelArgs);
-        gpu::computeToIndirectBarrier(ctx.cmd());
         mPipeline->set("src", even ? kDenoisedSource : kPing)
             .set("dst", even ? kPing : kDenoised)
             .set("activeLayers", int(schedule[i].layers))
             .set("stepWidth", schedule[i].step)
             .set("fillOnly", 1)
             .set("countHoles", 1);
-        mPipeline->dispatchIndirect(ctx.cmd(), fillState, kFillArgsOffset);
+        ctx.dispatchIndirect(*mPipeline, fillState, kFillArgsOffset);
     }
-    gpu::computeToIndirectBarrier(ctx.cmd());
     dispatchFillArgs(ctx, kCopyBackArgs);
-    gpu::computeToIndirectBarrier(ctx.cmd());
     mPipeline->set("src", kPing)
         .set("dst", kDenoised)
         .set("activeLayers", 0)
         .set("fillOnly", 0)
         .set("countHoles", 0);
-    mPipeline->dispatchIndirect(ctx.cmd(), fillState, kCopyArgsOffset);
+    ctx.dispatchIndirect(*mPipeline, fillState, kCopyArgsOffset);
 }
 
 }  // namespace fovea::passes

@@ -48,7 +48,7 @@ void AccumulatePass::execute(graph::ExecuteContext& ctx) {
     mPipeline->set("size", glm::ivec2(out.width(), out.height()))
         .set("restart", int(restart))
         .set("alphaWeight", int(mWeight == "alpha"));
-    mPipeline->dispatch(ctx.cmd(), out.width(), out.height());
+    ctx.dispatch(*mPipeline, out.width(), out.height());
 }
 
 }  // namespace fovea::passes

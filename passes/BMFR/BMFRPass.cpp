@@ -3,7 +3,6 @@
 #include "core/graph/DenoiserInputs.h"
 #include "core/sampling/BlockGrid.h"
 #include "core/sampling/VisualPolar.h"
-#include "core/vk/Barriers.h"
 #include "core/vk/ComputePipeline.h"
 #include "core/vk/Timestamps.h"
 
@@ -254,8 +253,7 @@ void BMFRPass::execute(graph::ExecuteContext& ctx) {
         .set("positionThreshold", mPositionThreshold)
         .set("normalThreshold", mNormalThreshold)
         .set("useVp", int(mUseVp));
-    mAccumulate->dispatch(cmd, out.width(), out.height());
-    gpu::computeToComputeBarrier(cmd);
+    ctx.dispatch(*mAccumulate, out.width(), out.height());
     stamp(1);
 
     // (II) fit: one workgroup of 256 threads per block.
@@ -276,8 +274,7 @@ void BMFRPass::execute(graph::ExecuteContext& ctx) {
         .set("dropTolerance", mDropTolerance)
         .set("useVp", int(mUseVp))
         .set("frame", uint32_t(ctx.frame().index));
-    mFit->dispatch(cmd, uint32_t(mBlocksX * mBlocksY) * 256u, 1);
-    gpu::computeToComputeBarrier(cmd);
+    ctx.dispatch(*mFit, uint32_t(mBlocksX * mBlocksY) * 256u, 1);
     stamp(2);
 
     // (II) weighted sum with the noise-free features.
@@ -286,8 +283,7 @@ void BMFRPass::execute(graph::ExecuteContext& ctx) {
         .set("offset", glm::ivec2(offset[0], offset[1]))
         .set("blocksX", mBlocksX)
         .set("useVp", int(mUseVp));
-    mWeightedSum->dispatch(cmd, out.width(), out.height());
-    gpu::computeToComputeBarrier(cmd);
+    ctx.dispatch(*mWeightedSum, out.width(), out.height());
     stamp(3);
 
     // (III) second accumulation + remodulation.
@@ -298,7 +294,7 @@ void BMFRPass::execute(graph::ExecuteContext& ctx) {
         .set("alpha", mAlpha3)
         .set("maxCount", kMaxCount)
         .set("useVp", int(mUseVp));
-    mSecond->dispatch(cmd, out.width(), out.height());
+    ctx.dispatch(*mSecond, out.width(), out.height());
     stamp(4);
     mTimingsPending = mTimestamps != nullptr;
 }

@@ -48,7 +48,7 @@ void BlitPass::execute(graph::ExecuteContext& ctx) {
     ctx.bindFields(*mPipeline);
     mPipeline->set("size", glm::ivec2(out.width(), out.height()))
         .set("linear", int(mFilter == "linear"));
-    mPipeline->dispatch(ctx.cmd(), out.width(), out.height());
+    ctx.dispatch(*mPipeline, out.width(), out.height());
 }
 
 }  // namespace fovea::passes

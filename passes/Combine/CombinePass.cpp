@@ -34,7 +34,7 @@ void CombinePass::execute(graph::ExecuteContext& ctx) {
         .set("weightB", mWeightB)
         .set("useB", int(useB))
         .set("absolute", int(mAbsolute));
-    mPipeline->dispatch(ctx.cmd(), out.width(), out.height());
+    ctx.dispatch(*mPipeline, out.width(), out.height());
 }
 
 }  // namespace fovea::passes

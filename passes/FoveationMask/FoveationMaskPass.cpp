@@ -85,7 +85,7 @@ void FoveationMaskPass::execute(graph::ExecuteContext& ctx) {
         .set("sppFovea", uint32_t(std::clamp(mSppFovea, 1, 65535)))
         .set("sppMiddle", uint32_t(std::clamp(mSppMiddle, 1, 65535)))
         .set("sppOuter", uint32_t(std::clamp(mSppOuter, 1, 65535)));
-    mPipeline->dispatch(ctx.cmd(), 256);  // one workgroup (see the shader)
+    ctx.dispatch(*mPipeline, 256);  // one workgroup (see the shader)
 }
 
 }  // namespace fovea::passes

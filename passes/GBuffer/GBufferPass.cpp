@@ -5,7 +5,6 @@
 #include "core/graph/DenoiserInputs.h"
 #include "core/sampling/VisualPolar.h"
 #include "core/scene/SceneGpu.h"
-#include "core/vk/Barriers.h"
 #include "core/vk/ComputePipeline.h"
 #include "core/vk/Resources.h"
 
@@ -103,11 +102,10 @@ void GBufferPass::execute(graph::ExecuteContext& ctx) {
         // trace the list. The graph only orders whole passes, so this pass orders its own two
         // dispatches (write-after-write on the same images).
         mPipeline->set("clearPass", 1u);
-        mPipeline->dispatch(ctx.cmd(), out.width(), out.height());
-        gpu::computeToComputeBarrier(ctx.cmd());
+        ctx.dispatch(*mPipeline, out.width(), out.height());
     }
     mPipeline->set("clearPass", 0u);
-    mPipeline->dispatch(ctx.cmd(), out.width(), out.height());
+    ctx.dispatch(*mPipeline, out.width(), out.height());
 }
 
 }  // namespace fovea::passes

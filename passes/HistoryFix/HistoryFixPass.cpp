@@ -5,7 +5,6 @@
 #include <glm/trigonometric.hpp>
 
 #include "core/scene/Camera.h"
-#include "core/vk/Barriers.h"
 #include "core/vk/ComputePipeline.h"
 
 namespace fovea::passes {
@@ -117,7 +116,6 @@ void HistoryFixPass::compile(graph::CompileContext& ctx) {
 }
 
 void HistoryFixPass::execute(graph::ExecuteContext& ctx) {
-    const auto& cmd = ctx.cmd();
     const auto& out = ctx.image("result");
     const int width = int(out.width()), height = int(out.height());
     const auto [eyes, eyeWidth] = scene::splitEyes(out.width(), mEyes, ctx.camera().eyeCount);
@@ -150,9 +148,8 @@ void HistoryFixPass::execute(graph::ExecuteContext& ctx) {
             .set("useAlbedo", useAlbedo)
             .set("useEmission", useEmission)
             .set("useNormal", useNormal);
-        mMipFirst->dispatch(cmd, uint32_t(blocks[0] * eyes), uint32_t(rows[0]));
+        ctx.dispatch(*mMipFirst, uint32_t(blocks[0] * eyes), uint32_t(rows[0]));
         for (int l = 2; l <= kLevels; ++l) {
-            gpu::computeToComputeBarrier(cmd);
             mMipDown->bind("src", ctx.image("mip" + std::to_string(l - 1)))
                 .bind("dst", ctx.image("mip" + std::to_string(l)))
                 .bind("nsrc", ctx.image("nmip" + std::to_string(l - 1)))
@@ -163,9 +160,8 @@ void HistoryFixPass::execute(graph::ExecuteContext& ctx) {
                 .set("srcBlocks", blocks[l - 2])
                 .set("srcHeight", rows[l - 2])
                 .set("useNormal", useNormal);
-            mMipDown->dispatch(cmd, uint32_t(blocks[l - 1] * eyes), uint32_t(rows[l - 1]));
+            ctx.dispatch(*mMipDown, uint32_t(blocks[l - 1] * eyes), uint32_t(rows[l - 1]));
         }
-        gpu::computeToComputeBarrier(cmd);
     }
     ctx.bindFields(*mFix);
     mFix->set("size", glm::ivec2(width, height))
@@ -186,7 +182,7 @@ void HistoryFixPass::execute(graph::ExecuteContext& ctx) {
         .set("cosNormal", std::cos(glm::radians(mNormalAngle)))
         .set("clampToNeighbours", int(mClampToNeighbours))
         .set("useRoughness", int(ctx.connected("roughness")));
-    mFix->dispatch(cmd, out.width(), out.height());
+    ctx.dispatch(*mFix, out.width(), out.height());
 }
 
 }  // namespace fovea::passes

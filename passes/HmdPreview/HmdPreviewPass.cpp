@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/vk/Barriers.h"
 #include "core/vk/ComputePipeline.h"
 #include "core/vk/Resources.h"
 
@@ -61,7 +60,6 @@ void HmdPreviewPass::compile(graph::CompileContext& ctx) {
 }
 
 void HmdPreviewPass::execute(graph::ExecuteContext& ctx) {
-    const auto& cmd = ctx.cmd();
     const auto& src = ctx.image("equirect");
     const glm::ivec2 size(int(src.width()), int(src.height()));
     const bool trilinear = mFilter == "trilinear";
@@ -78,8 +76,7 @@ void HmdPreviewPass::execute(graph::ExecuteContext& ctx) {
             .set("dstOffset", offset)
             .set("srcOffset", fromOffset)
             .set("fromInput", int(l == 1));
-        mMip->dispatch(cmd, uint32_t(dst.x), uint32_t(dst.y));
-        gpu::computeToComputeBarrier(cmd);
+        ctx.dispatch(*mMip, uint32_t(dst.x), uint32_t(dst.y));
         offset += dst.x;
     }
     const auto& out = ctx.image("view");
@@ -93,7 +90,7 @@ void HmdPreviewPass::execute(graph::ExecuteContext& ctx) {
         .set("headFollowsGaze", int(mHead == "gaze"))
         .set("tanHalfFov", std::tan(0.5f * glm::radians(mFovDeg)))
         .set("aspect", float(mWidth) / float(mHeight));
-    mView->dispatch(cmd, out.width(), out.height());
+    ctx.dispatch(*mView, out.width(), out.height());
 }
 
 }  // namespace fovea::passes

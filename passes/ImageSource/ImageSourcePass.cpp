@@ -43,7 +43,7 @@ void ImageSourcePass::execute(graph::ExecuteContext& ctx) {
         .set("pattern", pattern)
         .set("seed", seed)
         .set("frame", uint32_t(frame.index));
-    mPipeline->dispatch(ctx.cmd(), frame.width, frame.height);
+    ctx.dispatch(*mPipeline, frame.width, frame.height);
 }
 
 }  // namespace fovea::passes

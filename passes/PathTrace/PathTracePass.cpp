@@ -7,7 +7,6 @@
 #include "core/scene/SceneGpu.h"
 #include "core/shading/SpecularAlbedo.h"
 #include "core/util/Error.h"
-#include "core/vk/Barriers.h"
 #include "core/vk/ComputePipeline.h"
 #include "core/vk/Resources.h"
 
@@ -207,12 +206,11 @@ void PathTracePass::execute(graph::ExecuteContext& ctx) {
     const auto& out = ctx.image("radiance");
     glm::ivec2 size(int(out.width()), int(out.height()));
     if (mUseLayout) {
-        // Untraced pixels must read as invalid: clear everything, then trace the list. The
-        // barrier orders the two dispatches of this pass (the graph orders passes).
+        // Untraced pixels must read as invalid: clear everything, then trace the list (the
+        // context orders the trace after the clear: both write `radiance`).
         ctx.bindFields(*mClear);
         mClear->set("size", size);
-        mClear->dispatch(ctx.cmd(), out.width(), out.height());
-        gpu::computeToComputeBarrier(ctx.cmd());
+        ctx.dispatch(*mClear, out.width(), out.height());
     }
     // The graph zeroes `rays` on its first frame (counts accumulate from the first frame after
     // compile; 32 bits each: about 4000 frames of 640x360 at 1 spp before they wrap) and uploads
@@ -232,7 +230,7 @@ void PathTracePass::execute(graph::ExecuteContext& ctx) {
         .set("useAlbedo", int(mUseAlbedo))
         .set("useLayout", int(mUseLayout))
         .set("clampIndirect", mClampIndirect);
-    mTrace->dispatch(ctx.cmd(), out.width(), out.height());
+    ctx.dispatch(*mTrace, out.width(), out.height());
 }
 
 PathTracePass::RayCounts PathTracePass::rayCounts(const gpu::Context& context,

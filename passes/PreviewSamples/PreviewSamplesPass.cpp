@@ -4,7 +4,6 @@
 
 #include "core/sampling/SampleLayout.h"
 #include "core/scene/SceneFeatures.h"
-#include "core/vk/Barriers.h"
 #include "core/vk/ComputePipeline.h"
 
 namespace fovea::passes {
@@ -72,14 +71,12 @@ void PreviewSamplesPass::compile(graph::CompileContext& ctx) {
 
 void PreviewSamplesPass::execute(graph::ExecuteContext& ctx) {
     const auto& frame = ctx.frame();
-    const auto& cmd = ctx.cmd();
     const glm::uvec2 size(std::max(frame.width, 1u), std::max(frame.height, 1u));
     const uint64_t seed = frame.seed + uint64_t(uint32_t(mSeed)) * 0x9E3779B97F4A7C15ull;
     const auto& counts = ctx.buffer("counts");
 
     mClear->bind("counts", counts).set("size", size);
-    mClear->dispatch(cmd, size.x, size.y);
-    gpu::computeToComputeBarrier(cmd);
+    ctx.dispatch(*mClear, size.x, size.y);
 
     ctx.bindFields(*mGenerate);
     mGenerate->set("size", size)
@@ -92,13 +89,12 @@ void PreviewSamplesPass::execute(graph::ExecuteContext& ctx) {
         .set("seedLo", uint32_t(seed))
         .set("seedHi", uint32_t(seed >> 32))
         .set("frame", uint32_t(frame.index));
-    mGenerate->dispatch(cmd, uint32_t(mBudget));
-    gpu::computeToComputeBarrier(cmd);
+    ctx.dispatch(*mGenerate, uint32_t(mBudget));
 
     mCompact->bind("counts", counts);
     mCompact->bind(sampling::kSampleLayoutBinding, ctx.buffer(sampling::kSampleLayoutField));
     mCompact->set("size", size);
-    mCompact->dispatch(cmd, 256);  // one workgroup (see the shader)
+    ctx.dispatch(*mCompact, 256);  // one workgroup (see the shader)
 }
 
 }  // namespace fovea::passes

@@ -73,7 +73,7 @@ void RecurrentBlurSpatialPass::execute(graph::ExecuteContext& ctx) {
         .set("antilag", int(mAntilag))
         .set("antilagSigma", mAntilagSigmaScale)
         .set("antilagSensitivity", mAntilagSensitivity);
-    mStabilize->dispatch(ctx.cmd(), out.width(), out.height());
+    ctx.dispatch(*mStabilize, out.width(), out.height());
 }
 
 }  // namespace fovea::passes

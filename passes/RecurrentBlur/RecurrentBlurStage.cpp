@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "core/scene/Camera.h"
-#include "core/vk/Barriers.h"
 #include "core/vk/ComputePipeline.h"
 
 namespace fovea::passes {
@@ -121,8 +120,7 @@ void RecurrentBlurStage::blur(graph::ExecuteContext& ctx, const EyeLayout& e, co
         .set("writeRadius", int(mode != 2))
         .set("maxFrames", float(mMaxAccumulatedFrames))
         .set("hitRadiusK", mHitRadiusK);
-    mBlur->dispatch(ctx.cmd(), uint32_t(e.size.x), uint32_t(e.size.y));
-    gpu::computeToComputeBarrier(ctx.cmd());
+    ctx.dispatch(*mBlur, uint32_t(e.size.x), uint32_t(e.size.y));
 }
 
 }  // namespace fovea::passes

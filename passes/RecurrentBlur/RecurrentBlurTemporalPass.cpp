@@ -132,7 +132,7 @@ void RecurrentBlurTemporalPass::execute(graph::ExecuteContext& ctx) {
         .set("accumBasePower", mSpecAccumBasePower)
         .set("accumCurve", mSpecAccumCurve)
         .set("virtualMotion", int(mVirtualMotion));
-    mTemporal->dispatch(ctx.cmd(), out.width(), out.height());
+    ctx.dispatch(*mTemporal, out.width(), out.height());
     // As camera_info holds them: a mono camera's eye 0 in both slots.
     for (uint32_t i = 0; i < 2; ++i) mPreviousEyes[i] = cam.eyes[i < cam.eyeCount ? i : 0].position;
     mHavePreviousEyes = true;

@@ -36,7 +36,7 @@ void RemodulatePass::execute(graph::ExecuteContext& ctx) {
     mPipeline->set("size", glm::ivec2(out.width(), out.height()))
         .set("albedoEpsilon", mAlbedoEpsilon)
         .set("useEmission", int(ctx.connected("emission")));
-    mPipeline->dispatch(ctx.cmd(), out.width(), out.height());
+    ctx.dispatch(*mPipeline, out.width(), out.height());
 }
 
 }  // namespace fovea::passes

@@ -2,7 +2,6 @@
 
 #include "core/graph/DenoiserInputs.h"
 #include "core/sampling/VisualPolar.h"
-#include "core/vk/Barriers.h"
 #include "core/vk/ComputePipeline.h"
 
 namespace fovea::passes {
@@ -142,7 +141,6 @@ void SVGFPass::compile(graph::CompileContext& ctx) {
 }
 
 void SVGFPass::execute(graph::ExecuteContext& ctx) {
-    const auto& cmd = ctx.cmd();
     // Every history is written each frame, so one answers for all of them.
     const bool history = ctx.historyValid("hist_length");
     const auto& out = ctx.image("filtered");
@@ -162,8 +160,7 @@ void SVGFPass::execute(graph::ExecuteContext& ctx) {
         .set("maxHistory", mMaxHistory)
         .set("positionThreshold", mPositionThreshold)
         .set("normalThreshold", mNormalThreshold);
-    mReproject->dispatch(cmd, out.width(), out.height());
-    gpu::computeToComputeBarrier(cmd);
+    ctx.dispatch(*mReproject, out.width(), out.height());
 
     // §4.2 variance estimate into the first ping-pong image.
     const gpu::Image* ping = &ctx.image("atrous_a");
@@ -176,7 +173,7 @@ void SVGFPass::execute(graph::ExecuteContext& ctx) {
         .set("historyForVariance", mHistoryForVariance)
         .set("sigmaNormal", mSigmaNormal)
         .set("sigmaDepth", mSigmaDepth);
-    mVariance->dispatch(cmd, out.width(), out.height());
+    ctx.dispatch(*mVariance, out.width(), out.height());
 
     // §4.3 a-trous levels, step 2^i.
     ctx.bindFields(*mATrous);
@@ -188,12 +185,11 @@ void SVGFPass::execute(graph::ExecuteContext& ctx) {
         .set("sigmaNormal", mSigmaNormal)
         .set("sigmaDepth", mSigmaDepth);
     for (int level = 0; level < mIterations; ++level) {
-        gpu::computeToComputeBarrier(cmd);
         mATrous->bind("atrous_in", *ping).bind("atrous_out", *pong);
         mATrous->set("stepSize", 1 << level)
             .set("writeColorHistory", int(level + 1 == mFeedbackTap))
             .set("last", int(level + 1 == mIterations));
-        mATrous->dispatch(cmd, out.width(), out.height());
+        ctx.dispatch(*mATrous, out.width(), out.height());
         std::swap(ping, pong);
     }
 }

@@ -63,7 +63,7 @@ void SampleListPass::execute(graph::ExecuteContext& ctx) {
         .set("threshold", sampling::sampleFractionThreshold(o.fraction))
         .set("seed", o.seed)
         .set("samples", o.samples);
-    mPipeline->dispatch(ctx.cmd(), 256);  // one workgroup (see the shader)
+    ctx.dispatch(*mPipeline, 256);  // one workgroup (see the shader)
 }
 
 }  // namespace fovea::passes

@@ -75,7 +75,7 @@ void TAAPass::execute(graph::ExecuteContext& ctx) {
         .set("useHistory", int(useHistory))
         .set("useMotion", int(mUseMotion))
         .set("useVp", int(mUseVp));
-    mPipeline->dispatch(ctx.cmd(), out.width(), out.height());
+    ctx.dispatch(*mPipeline, out.width(), out.height());
 }
 
 }  // namespace fovea::passes

@@ -35,7 +35,7 @@ void TonemapPass::execute(graph::ExecuteContext& ctx) {
         .set("exposureScale", std::exp2(mExposure))
         .set("op", op)
         .set("srgb", int(mSrgb));
-    mPipeline->dispatch(ctx.cmd(), out.width(), out.height());
+    ctx.dispatch(*mPipeline, out.width(), out.height());
 }
 
 }  // namespace fovea::passes

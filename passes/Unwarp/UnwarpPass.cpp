@@ -4,7 +4,6 @@
 
 #include "core/graph/DenoiserInputs.h"
 #include "core/sampling/VisualPolar.h"
-#include "core/vk/Barriers.h"
 #include "core/vk/ComputePipeline.h"
 #include "core/vk/Resources.h"
 
@@ -109,46 +108,39 @@ void UnwarpPass::execute(graph::ExecuteContext& ctx) {
         .set("groupsY", groups[1])
         .set("mipGroupsY", mipGroups[1])
         .set("mode", 0u);
-    mLookup->dispatch(ctx.cmd(), 1, 1);
-    gpu::computeToIndirectBarrier(ctx.cmd());
+    ctx.dispatch(*mLookup, 1, 1);
     mLookup->set("mode", 1u);
-    mLookup->dispatchIndirect(ctx.cmd(), rebuildArgs);
-    gpu::computeToComputeBarrier(ctx.cmd());
+    ctx.dispatchIndirect(*mLookup, rebuildArgs);
     // The group counts of the fine mapping and of the phi mips, from the boxes of pixels with
     // L > 0 the rebuild grew (or kept).
     mLookup->set("mode", 2u);
-    mLookup->dispatch(ctx.cmd(), 1, 1);
-    gpu::computeToIndirectBarrier(ctx.cmd());
+    ctx.dispatch(*mLookup, 1, 1);
     // P5 §3.4: level k of a column holds ceil(n / 2^k) rows, each the average of two rows of
-    // level k - 1 (wrapped); one dispatch per level, ordered by barriers, over the columns the
-    // fine mapping reads (none for a level it never reads).
+    // level k - 1 (wrapped); one dispatch per level (the context orders each after the last: one
+    // image), over the columns the fine mapping reads (none for a level it never reads).
     ctx.bindFields(*mMips);
     for (int level = 1; level < levels; ++level) {
         mMips->set("level", uint32_t(level));
-        mMips->dispatchIndirect(ctx.cmd(), rebuildArgs, kArgsStride * uint64_t(level));
-        gpu::computeToComputeBarrier(ctx.cmd());
+        ctx.dispatchIndirect(*mMips, rebuildArgs, kArgsStride * uint64_t(level));
     }
     // P5 §3.4's trilinear fetch only where a pixel covers more than one phi row (L > 0: the fovea
     // at the default reduction): the full-screen dispatch samples level 0, the fine one redoes
     // the pixels in each eye's box of L > 0 (the same arithmetic as one trilinear dispatch).
     ctx.bindFields(*mMap);
     mMap->set("levels", uint32_t(levels)).set("toResult", uint32_t(!mBlur));
-    mMap->dispatch(ctx.cmd(), out.width(), out.height());
-    gpu::computeToComputeBarrier(ctx.cmd());
+    ctx.dispatch(*mMap, out.width(), out.height());
     ctx.bindFields(*mMapFine);
     mMapFine->bind("unwarp_rebuild", rebuildArgs)
         .set("levels", uint32_t(levels))
         .set("toResult", uint32_t(!mBlur));
-    mMapFine->dispatchIndirect(ctx.cmd(), rebuildArgs, kFineArgsOffset);
+    ctx.dispatchIndirect(*mMapFine, rebuildArgs, kFineArgsOffset);
     mKeyStored = true;
     if (!mBlur) return;
     // Two separable passes: rows into blur_tmp, then columns into result.
-    gpu::computeToComputeBarrier(ctx.cmd());
     ctx.bindFields(*mBlurRows);
-    mBlurRows->dispatch(ctx.cmd(), out.width(), out.height());
-    gpu::computeToComputeBarrier(ctx.cmd());
+    ctx.dispatch(*mBlurRows, out.width(), out.height());
     ctx.bindFields(*mBlurColumns);
-    mBlurColumns->dispatch(ctx.cmd(), out.width(), out.height());
+    ctx.dispatch(*mBlurColumns, out.width(), out.height());
 }
 
 }  // namespace fovea::passes

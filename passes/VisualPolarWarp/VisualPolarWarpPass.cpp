@@ -73,7 +73,7 @@ void VisualPolarWarpPass::execute(graph::ExecuteContext& ctx) {
     mPipeline->set("stairBlock", uint32_t(mStaircase ? sampling::kBlockGridSize : 0))
         .set("stairOffset", uint32_t(now[0]))
         .set("stairPrevOffset", uint32_t(before[0]));
-    mPipeline->dispatch(ctx.cmd(), coords.width(), coords.height());
+    ctx.dispatch(*mPipeline, coords.width(), coords.height());
 }
 
 }  // namespace fovea::passes

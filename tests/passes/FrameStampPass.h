@@ -38,7 +38,7 @@ public:
             .set("stampValue", float(ctx.frame().index) + mOffset)
             .set("valid1", int(ctx.historyValid("stamp", 1)))
             .set("valid2", int(ctx.historyValid("stamp", 2)));
-        mPipeline->dispatch(ctx.cmd(), out.width(), out.height());
+        ctx.dispatch(*mPipeline, out.width(), out.height());
     }
 
 private:
