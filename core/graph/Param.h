@@ -1,5 +1,7 @@
 // Pass parameters, declared once. A pass lists each parameter exactly once in
-// `Pass::params(ParamVisitor&)`: name, type, default, range/choices and doc. Visitors turn that one
+// `Pass::params(ParamVisitor&)`: name, type, default, range/choices and doc. The default lives
+// only there: the member is value-initialized (`float mAlpha{};`) and PassRegistry::create
+// applies the declared default. Visitors turn that one
 // declaration into defaults, JSON load (with file + JSON-pointer errors), JSON save, the
 // `fovea passes` listing, and later the ImGui panel.
 #pragma once

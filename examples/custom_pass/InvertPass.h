@@ -19,6 +19,6 @@ public:
 
 private:
     std::filesystem::path mShaderDir;
-    float mWhite = 1.0f;
+    float mWhite{};  // default in params(), applied by the registry
     std::unique_ptr<fovea::gpu::ComputePipeline> mPipeline;
 };

@@ -38,19 +38,19 @@ public:
     uint64_t tileListBuilds() const { return mTileBuilds; }
 
 private:
-    int mLayers = 1;
-    int mIterations[3] = {5, 0, 0};
-    std::string mStepOrder = "decreasing";
-    std::string mSchedule = "levels";
-    bool mFill = true;
-    int mEyes = 0;
-    float mSigmaColor = 1.0f;
-    float mSigmaNormal = 0.2f;
-    float mSigmaPosition = 0.5f;
-    std::string mPositionUnit = "scene";
-    std::string mPositionTerm = "plane";
-    float mSigmaTangent = 0.0f;
-    std::string mDispatch = "tiles";
+    int mLayers{};
+    int mIterations[3]{};
+    std::string mStepOrder{};
+    std::string mSchedule{};
+    bool mFill{};
+    int mEyes{};
+    float mSigmaColor{};
+    float mSigmaNormal{};
+    float mSigmaPosition{};
+    std::string mPositionUnit{};
+    std::string mPositionTerm{};
+    float mSigmaTangent{};
+    std::string mDispatch{};
     bool mUseMask = false, mUseNormal = false, mUsePosition = false;
     std::string mVariant;
     std::unique_ptr<gpu::ComputePipeline> mPipeline;

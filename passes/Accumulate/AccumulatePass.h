@@ -16,7 +16,7 @@ public:
     void onReset() override { mCount = 0; }
 
 private:
-    int mMaxFrames = 0;
+    int mMaxFrames{};
     std::string mWeight;
     int mCount = 0;
     std::unique_ptr<gpu::ComputePipeline> mPipeline;

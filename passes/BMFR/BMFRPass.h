@@ -57,19 +57,18 @@ private:
     void readTimings();
 
     // Parameters.
-    std::string mFeatures = "default";
-    std::string mVariant = "default";
-    std::string mOffsetTable = "variant", mScaling = "variant", mEdges = "variant",
-                mMisses = "variant", mCount = "variant", mClamp = "variant";
-    float mEpsilon = 0.01f;
-    float mAlpha1 = 0.2f;
-    float mAlpha3 = 0.1f;
-    float mPositionThreshold = 0.02f;
-    float mNormalThreshold = 0.5f;
-    bool mOffsets = true;
-    float mDropTolerance = 1e-3f;
-    bool mTimings = false;
-    bool mFp16History = false;
+    std::string mFeatures{};
+    std::string mVariant{};
+    std::string mOffsetTable{}, mScaling{}, mEdges{}, mMisses{}, mCount{}, mClamp{};
+    float mEpsilon{};
+    float mAlpha1{};
+    float mAlpha3{};
+    float mPositionThreshold{};
+    float mNormalThreshold{};
+    bool mOffsets{};
+    float mDropTolerance{};
+    bool mTimings{};
+    bool mFp16History{};
 
     // State.
     int mBlocksX = 0, mBlocksY = 0;

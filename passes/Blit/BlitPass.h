@@ -15,10 +15,10 @@ public:
     std::vector<std::pair<std::string, std::string>> bypass() const override;
 
 private:
-    float mScale = 1.0f;
+    float mScale{};
     std::string mFormat;
     std::string mFilter;
-    int mActiveEvery = 1;
+    int mActiveEvery{};
     std::unique_ptr<gpu::ComputePipeline> mPipeline;
 };
 

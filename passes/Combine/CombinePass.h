@@ -13,8 +13,8 @@ public:
     void execute(graph::ExecuteContext& ctx) override;
 
 private:
-    float mWeightA = 1.0f, mWeightB = 1.0f;
-    bool mAbsolute = false;
+    float mWeightA{}, mWeightB{};
+    bool mAbsolute{};
     std::unique_ptr<gpu::ComputePipeline> mPipeline;
 };
 

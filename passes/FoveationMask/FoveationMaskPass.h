@@ -32,12 +32,12 @@ public:
     }
 
 private:
-    float mR0 = 144.0f, mR1 = 288.0f;
+    float mR0{}, mR1{};
     std::string mRadiusUnit;
-    float mOuterProbability = 0.5f;
-    int mSppFovea = 4, mSppMiddle = 3, mSppOuter = 2;
-    int mSeed = 0;
-    bool mAnimate = false;
+    float mOuterProbability{};
+    int mSppFovea{}, mSppMiddle{}, mSppOuter{};
+    int mSeed{};
+    bool mAnimate{};
     std::unique_ptr<gpu::ComputePipeline> mPipeline;
 };
 

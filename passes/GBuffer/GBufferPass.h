@@ -25,7 +25,7 @@ public:
     std::string variant() const override { return mVariant; }
 
 private:
-    bool mJitter = true;
+    bool mJitter{};
     bool mStochastic = false;  // the scene has BLEND materials (SceneGpu::hasStochasticAlpha)
     std::string mVariant;
     std::unique_ptr<gpu::ComputePipeline> mPipeline;

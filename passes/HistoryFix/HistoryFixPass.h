@@ -22,15 +22,15 @@ public:
     std::string variant() const override { return mMethod; }
 
 private:
-    int mFixFrames = 3;
-    std::string mMethod = "mips";
-    float mCountOffset = 0.0f;
-    float mBasePixelStride = 14.0f;
-    float mDepthSensitivity = 0.05f;
-    float mReferenceHeight = 1080.0f;
-    float mNormalAngle = 10.0f;
-    bool mClampToNeighbours = true;
-    int mEyes = 0;
+    int mFixFrames{};
+    std::string mMethod{};
+    float mCountOffset{};
+    float mBasePixelStride{};
+    float mDepthSensitivity{};
+    float mReferenceHeight{};
+    float mNormalAngle{};
+    bool mClampToNeighbours{};
+    int mEyes{};
     std::unique_ptr<gpu::ComputePipeline> mMipFirst, mMipDown, mFix;
 };
 

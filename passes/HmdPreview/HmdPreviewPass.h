@@ -20,9 +20,9 @@ public:
     static uint32_t mipLevels(uint32_t width, uint32_t height);
 
 private:
-    int mWidth = 640, mHeight = 720;
-    int mEyes = 1;
-    float mFovDeg = 100.0f;
+    int mWidth{}, mHeight{};
+    int mEyes{};
+    float mFovDeg{};
     std::string mHead;
     std::string mFilter;
     std::unique_ptr<gpu::ComputePipeline> mMip, mView;

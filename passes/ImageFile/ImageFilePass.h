@@ -31,7 +31,7 @@ private:
 
     std::string mPath;
     std::string mResolvedPath;  // mPath resolved against the graph file's folder (compile)
-    int mFirstFrame = 0;
+    int mFirstFrame{};
     std::string mChannels;
 };
 

@@ -15,9 +15,9 @@ public:
 
 private:
     std::string mPattern;
-    glm::vec3 mValue{1.0f};
-    int mSeed = 0;
-    bool mAnimate = false;
+    glm::vec3 mValue{};
+    int mSeed{};
+    bool mAnimate{};
     std::unique_ptr<gpu::ComputePipeline> mPipeline;
 };
 

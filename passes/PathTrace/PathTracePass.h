@@ -49,16 +49,16 @@ public:
 private:
     // Default of lastBounceMis: see docs/passes/PathTrace.md "Emission and MIS".
     static constexpr bool kLastBounceMisDefault = false;
-    int mSpp = 1;
-    int mMaxBounces = 1;
-    std::string mBrdf = "lambert";
-    float mClampIndirect = 0.0f;
-    bool mCountRays = false;
-    bool mLastBounceMis = kLastBounceMisDefault;
-    bool mStratifyLight = false;
-    bool mBumpShadowing = false;
-    std::string mEmitterSampling = "mis";
-    std::string mLightSampling = "area";
+    int mSpp{};
+    int mMaxBounces{};
+    std::string mBrdf{};
+    float mClampIndirect{};
+    bool mCountRays{};
+    bool mLastBounceMis{};
+    bool mStratifyLight{};
+    bool mBumpShadowing{};
+    std::string mEmitterSampling{};
+    std::string mLightSampling{};
 
     std::string mVariant;
     bool mUseVisibility = false, mUseAlbedo = false, mUseLayout = false;

@@ -21,12 +21,12 @@ public:
 
 private:
     std::string mMethod;
-    int mBudget = 100000;
+    int mBudget{};
     std::string mInverse;
     std::string mHead;
-    float mFovDeg = 100.0f;
-    float mAspect = 1.0f;
-    int mSeed = 0;
+    float mFovDeg{};
+    float mAspect{};
+    int mSeed{};
     std::unique_ptr<gpu::ComputePipeline> mClear, mGenerate, mCompact;
 };
 

@@ -16,11 +16,11 @@ public:
     void execute(graph::ExecuteContext& ctx) override;
 
 private:
-    int mHistoryFixFrames = 3;
-    int mMaxStabilizedFrames = 63;
-    bool mAntilag = true;
-    float mAntilagSigmaScale = 4.0f;
-    float mAntilagSensitivity = 3.0f;
+    int mHistoryFixFrames{};
+    int mMaxStabilizedFrames{};
+    bool mAntilag{};
+    float mAntilagSigmaScale{};
+    float mAntilagSensitivity{};
     std::unique_ptr<gpu::ComputePipeline> mStabilize;
 };
 

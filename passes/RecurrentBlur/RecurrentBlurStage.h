@@ -44,23 +44,23 @@ protected:
     };
     EyeLayout eyeLayout(const graph::ExecuteContext& ctx, const gpu::Image& out) const;
     float resolutionScale(const EyeLayout& e) const;  // H / referenceHeight, or 1
-    // One blur.comp dispatch (mode 0 pre-blur, 1 blur, 2 post-blur) from fields src/hit to dst,
-    // then a barrier (every blur's output is the next kernel's input). historyFixFrames and
+    // One blur.comp dispatch (mode 0 pre-blur, 1 blur, 2 post-blur) from fields src/hit to dst
+    // (the context orders it after the kernel that wrote src). historyFixFrames and
     // hitNormalized are the calling stage's (mode 0 ignores the first, modes 1-2 the second).
     void blur(graph::ExecuteContext& ctx, const EyeLayout& e, const char* src, const char* hit,
               const char* dst, int mode, float maxRadius, int historyFixFrames, bool hitNormalized);
 
     std::string mStageName;
-    std::string mSignal = "diffuse";
-    int mMaxAccumulatedFrames = 30;
-    float mMaxBlurRadius = 30.0f;
-    float mMinBlurRadius = 1.0f;
-    float mReferenceHeight = 1080.0f;
-    std::string mRadiusScaling = "sqrt";
-    float mPlaneDistanceSensitivity = 0.02f;
-    float mMinHitDistanceWeight = 0.1f;
-    float mHitRadiusK = 0.5f;
-    int mEyes = 0;
+    std::string mSignal{};
+    int mMaxAccumulatedFrames{};
+    float mMaxBlurRadius{};
+    float mMinBlurRadius{};
+    float mReferenceHeight{};
+    std::string mRadiusScaling{};
+    float mPlaneDistanceSensitivity{};
+    float mMinHitDistanceWeight{};
+    float mHitRadiusK{};
+    int mEyes{};
     bool mUseMotion = false;
     std::unique_ptr<gpu::ComputePipeline> mBlur;
 };

@@ -18,15 +18,15 @@ public:
     void execute(graph::ExecuteContext& ctx) override;
 
 private:
-    float mPrepassBlurRadius = 30.0f;
-    float mDisocclusionThreshold = 0.01f;
-    float mDisocclusionNormal = 0.5f;
-    bool mHitNormalized = false;
-    bool mFireflySuppression = true;
-    float mSpecAccumBasePower = 0.66f;
-    float mSpecAccumCurve = 1.0f;
-    bool mVirtualMotion = true;
-    float mParallaxFrameRate = 60.0f;
+    float mPrepassBlurRadius{};
+    float mDisocclusionThreshold{};
+    float mDisocclusionNormal{};
+    bool mHitNormalized{};
+    bool mFireflySuppression{};
+    float mSpecAccumBasePower{};
+    float mSpecAccumCurve{};
+    bool mVirtualMotion{};
+    float mParallaxFrameRate{};
     std::unique_ptr<gpu::ComputePipeline> mTemporal;
     // Specular parallax: the eyes of the frame before (none after a compile).
     glm::vec3 mPreviousEyes[2] = {};

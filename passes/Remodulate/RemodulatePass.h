@@ -14,7 +14,7 @@ public:
     bool cacheable() const override { return true; }
 
 private:
-    float mAlbedoEpsilon = 1e-3f;
+    float mAlbedoEpsilon{};
     std::unique_ptr<gpu::ComputePipeline> mPipeline;
 };
 

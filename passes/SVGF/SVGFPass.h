@@ -26,18 +26,18 @@ public:
 
 private:
     // Parameters (declared and documented once, in params()).
-    int mIterations = 5;
-    int mFeedbackTap = 1;
-    float mAlpha = 0.2f;
-    float mMomentsAlpha = 0.2f;
-    float mSigmaLuminance = 4.0f;
-    float mSigmaNormal = 128.0f;
-    float mSigmaDepth = 1.0f;
-    float mHistoryForVariance = 4.0f;
-    int mSpatialRadius = 3;
-    float mMaxHistory = 32.0f;
-    float mPositionThreshold = 0.02f;
-    float mNormalThreshold = 0.9f;
+    int mIterations{};
+    int mFeedbackTap{};
+    float mAlpha{};
+    float mMomentsAlpha{};
+    float mSigmaLuminance{};
+    float mSigmaNormal{};
+    float mSigmaDepth{};
+    float mHistoryForVariance{};
+    int mSpatialRadius{};
+    float mMaxHistory{};
+    float mPositionThreshold{};
+    float mNormalThreshold{};
 
     // State.
     bool mUseMotion = false, mUseAlbedo = false, mUseEmission = false, mUseVp = false;

@@ -24,11 +24,11 @@ public:
 
 private:
     std::string mPattern;
-    int mN = 2;
-    float mFraction = 0.5f;
-    int mSeed = 0;
-    bool mAnimate = false;
-    int mSpp = 1;
+    int mN{};
+    float mFraction{};
+    int mSeed{};
+    bool mAnimate{};
+    int mSpp{};
     std::unique_ptr<gpu::ComputePipeline> mPipeline;
 };
 

@@ -19,11 +19,11 @@ public:
     std::string variant() const override { return mVariant; }
 
 private:
-    float mAlpha = 0.1f;
-    std::string mClip = "variance";
-    float mGamma = 1.0f;
-    std::string mHistoryFilter = "bilinear";
-    int mEyes = 0;
+    float mAlpha{};
+    std::string mClip{};
+    float mGamma{};
+    std::string mHistoryFilter{};
+    int mEyes{};
     bool mUseMotion = false, mUseVp = false;
     std::string mVariant;
     std::unique_ptr<gpu::ComputePipeline> mPipeline;

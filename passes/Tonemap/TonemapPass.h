@@ -13,9 +13,9 @@ public:
     bool cacheable() const override { return true; }
 
 private:
-    float mExposure = 0.0f;
+    float mExposure{};
     std::string mOperator;
-    bool mSrgb = true;
+    bool mSrgb{};
     std::unique_ptr<gpu::ComputePipeline> mPipeline;
 };
 

@@ -18,11 +18,11 @@ public:
     void onReset() override;
 
 private:
-    int mLevels = 4;
-    bool mBlur = true;
-    float mBlurSigma = 6.8f;
-    float mBlurDegrees = 30.0f;
-    bool mCache = true;
+    int mLevels{};
+    bool mBlur{};
+    float mBlurSigma{};
+    float mBlurDegrees{};
+    bool mCache{};
     bool mKeyStored = false;  // lookup_key holds the key of the last rebuild
     std::unique_ptr<gpu::ComputePipeline> mMips, mLookup, mMap, mMapFine, mBlurRows, mBlurColumns;
 };

@@ -23,10 +23,10 @@ public:
     bool cacheable() const override { return !mStaircase; }
 
 private:
-    float mReduction = 0.61f;
-    float mFoveaFraction = 0.24f;
-    bool mTraceOffscreen = false;
-    bool mStaircase = false;
+    float mReduction{};
+    float mFoveaFraction{};
+    bool mTraceOffscreen{};
+    bool mStaircase{};
     std::unique_ptr<gpu::ComputePipeline> mPipeline;
 };
 

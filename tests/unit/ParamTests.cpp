@@ -6,9 +6,12 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/graph/Param.h"
+#include "core/graph/PassRegistry.h"
 #include "core/util/Error.h"
+#include "passes/RegisterPasses.h"
 #include "tests/passes/TestPasses.h"
 
 using namespace fovea;
@@ -327,4 +330,49 @@ TEST(ParamText, RejectsUnparsableText) {
     // Parsable but of the wrong type: converted as JSON, rejected by loadParams.
     json v = parseParamText(*pass, "count", "\"3\"", "--set p.count=\"3\"");
     EXPECT_THROW(loadParams(*pass, {{"count", v}}, "--set p.count=\"3\"", ""), InputError);
+}
+
+namespace {
+
+// Records the parameters whose member holds something other than a value-initialized one.
+class NonZeroParams : public ParamVisitor {
+public:
+    std::vector<std::string> names;
+    void visit(const ParamSpec& s, bool& v, bool) override { note(s, v != bool{}); }
+    void visit(const ParamSpec& s, int& v, int) override { note(s, v != int{}); }
+    void visit(const ParamSpec& s, float& v, float) override { note(s, v != float{}); }
+    void visit(const ParamSpec& s, std::string& v, const std::string&) override {
+        note(s, !v.empty());
+    }
+    void visit(const ParamSpec& s, glm::vec3& v, const glm::vec3&) override {
+        note(s, v != glm::vec3(0.0f));
+    }
+
+private:
+    void note(const ParamSpec& s, bool nonZero) {
+        if (nonZero) names.push_back(s.name);
+    }
+};
+
+}  // namespace
+
+// Issue 30, "one default per parameter": a built-in pass's default is written once, in its
+// params() declaration (PassRegistry::create applies it). The members are value-initialized
+// placeholders, so a constructor that sets a parameter (a second, possibly different default)
+// fails here with the type and parameter.
+TEST(ParamDefaults, BuiltinPassesWriteEachDefaultOnlyInParams) {
+    registerBuiltinPasses();
+    size_t checked = 0;
+    for (const std::string& type : passRegistry().types()) {
+        if (!passRegistry().origin(type).empty()) continue;               // a plugin's own business
+        std::unique_ptr<Pass> raw = passRegistry().find(type)->create();  // no defaults applied
+        NonZeroParams visitor;
+        raw->params(visitor);
+        for (const auto& name : visitor.names)
+            ADD_FAILURE() << type << "::" << name
+                          << " is set before its declared default is applied (initialize the "
+                             "member with {} and keep the default in params())";
+        ++checked;
+    }
+    EXPECT_GE(checked, 20u);
 }
