@@ -16,6 +16,9 @@
 #include "editor/PreviewImage.h"
 #include "editor/VulkanWindow.h"
 
+struct ImDrawList;  // imgui.h, included by the .cpp files only
+struct ImVec2;
+
 namespace fovea::editor {
 
 struct InspectorOptions {
@@ -94,6 +97,11 @@ private:
     void pollGraphFile();
     void drawUi();
     void drawGraphView();
+    // The graph view's parts: the edges (returns the field of the edge a click hit, or ""), one
+    // node (returns true when its header was dragged), a node's input and output slots.
+    std::string drawEdges(ImDrawList* draw, ImVec2 origin, bool clicked) const;
+    bool drawNode(ImDrawList* draw, ImVec2 origin, size_t index);
+    void drawNodeSlots(ImDrawList* draw, ImVec2 origin, const LayoutNode& node);
     void drawPreviewPanel();
     void drawSidePanel();
     void drawTimings();

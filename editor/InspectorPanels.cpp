@@ -83,20 +83,29 @@ void Inspector::drawUi() {
 }
 
 void Inspector::drawGraphView() {
-    const graph::RenderGraph& g = mSession.graph();
-    const auto& records = g.records();
     ImGui::BeginChild("canvas", ImVec2(0, 0), false, ImGuiWindowFlags_HorizontalScrollbar);
     const ImVec2 origin = ImGui::GetCursorScreenPos();
     ImDrawList* draw = ImGui::GetWindowDrawList();
     mCanvasClip = {draw->GetClipRectMin().x, draw->GetClipRectMin().y, draw->GetClipRectMax().x,
                    draw->GetClipRectMax().y};
-    auto at = [&](float x, float y) { return ImVec2(origin.x + x, origin.y + y); };
-    bool moved = false;
-
     // A click near an edge previews the field it carries (what its input reads, delay included).
-    const ImVec2 mouse = ImGui::GetIO().MousePos;
     const bool clicked =
         ImGui::IsWindowHovered() && ImGui::IsMouseClicked(0) && !ImGui::IsAnyItemHovered();
+    const std::string edgeHit = drawEdges(draw, origin, clicked);
+    if (!edgeHit.empty()) previewField(edgeHit);
+
+    mNodeRects.assign(mLayout.nodes.size(), {0, 0, 0, 0});
+    bool moved = false;
+    for (size_t i = 0; i < mLayout.nodes.size(); ++i) moved |= drawNode(draw, origin, i);
+    ImGui::SetCursorScreenPos(origin);
+    ImGui::Dummy(ImVec2(mLayout.width, mLayout.height));
+    ImGui::EndChild();
+    if (moved) relayout();
+}
+
+std::string Inspector::drawEdges(ImDrawList* draw, ImVec2 origin, bool clicked) const {
+    auto at = [&](float x, float y) { return ImVec2(origin.x + x, origin.y + y); };
+    const ImVec2 mouse = ImGui::GetIO().MousePos;
     std::string edgeHit;
     float edgeHitDistance = 6.0f;  // pixels
     for (const LayoutEdge& e : mLayout.edges) {
@@ -123,69 +132,72 @@ void Inspector::drawGraphView() {
                           label.c_str());
         }
     }
+    return edgeHit;
+}
 
-    if (!edgeHit.empty()) previewField(edgeHit);
-
+bool Inspector::drawNode(ImDrawList* draw, ImVec2 origin, size_t i) {
+    auto at = [&](float x, float y) { return ImVec2(origin.x + x, origin.y + y); };
+    const auto& records = mSession.graph().records();
     const LayoutMetrics metrics;
-    mNodeRects.assign(mLayout.nodes.size(), {0, 0, 0, 0});
-    for (size_t i = 0; i < mLayout.nodes.size(); ++i) {
-        const LayoutNode& n = mLayout.nodes[i];
-        const graph::PassStatus status =
-            i < records.size() ? records[i].status : graph::PassStatus::Culled;
-        const ImVec2 p0 = at(n.x, n.y), p1 = at(n.x + n.width, n.y + n.height);
-        draw->AddRectFilled(p0, p1, IM_COL32(36, 36, 44, 240), 4.0f);
-        draw->AddRectFilled(p0, ImVec2(p1.x, p0.y + metrics.header), colourOf(statusColour(status)),
-                            4.0f, ImDrawFlags_RoundCornersTop);
-        draw->AddRect(
-            p0, p1, n.name == mSelected ? IM_COL32(255, 255, 255, 255) : IM_COL32(90, 90, 100, 255),
-            4.0f, 0, n.name == mSelected ? 2.5f : 1.0f);
-        const std::string title = n.name + " : " + n.type;
-        draw->AddText(ImVec2(p0.x + 6, p0.y + 4), IM_COL32(255, 255, 255, 255), title.c_str());
-        mNodeRects[i] = {p0.x, p0.y, n.width, metrics.header};
+    const LayoutNode& n = mLayout.nodes[i];
+    const graph::PassStatus status =
+        i < records.size() ? records[i].status : graph::PassStatus::Culled;
+    const ImVec2 p0 = at(n.x, n.y), p1 = at(n.x + n.width, n.y + n.height);
+    draw->AddRectFilled(p0, p1, IM_COL32(36, 36, 44, 240), 4.0f);
+    draw->AddRectFilled(p0, ImVec2(p1.x, p0.y + metrics.header), colourOf(statusColour(status)),
+                        4.0f, ImDrawFlags_RoundCornersTop);
+    draw->AddRect(p0, p1,
+                  n.name == mSelected ? IM_COL32(255, 255, 255, 255) : IM_COL32(90, 90, 100, 255),
+                  4.0f, 0, n.name == mSelected ? 2.5f : 1.0f);
+    const std::string title = n.name + " : " + n.type;
+    draw->AddText(ImVec2(p0.x + 6, p0.y + 4), IM_COL32(255, 255, 255, 255), title.c_str());
+    mNodeRects[i] = {p0.x, p0.y, n.width, metrics.header};
 
-        ImGui::SetCursorScreenPos(p0);
-        ImGui::PushID(int(i));
-        if (ImGui::InvisibleButton("node", ImVec2(n.width, metrics.header))) mSelected = n.name;
-        // Dragging a header moves the node; "save as" writes the positions (editor block).
-        if (ImGui::IsItemActive() && ImGui::IsMouseDragging(0)) {
-            const ImVec2 d = ImGui::GetIO().MouseDelta;
-            mPositions[n.name] = {n.x + d.x, n.y + d.y};
-            moved = true;
+    bool moved = false;
+    ImGui::SetCursorScreenPos(p0);
+    ImGui::PushID(int(i));
+    if (ImGui::InvisibleButton("node", ImVec2(n.width, metrics.header))) mSelected = n.name;
+    // Dragging a header moves the node; "save as" writes the positions (editor block).
+    if (ImGui::IsItemActive() && ImGui::IsMouseDragging(0)) {
+        const ImVec2 d = ImGui::GetIO().MouseDelta;
+        mPositions[n.name] = {n.x + d.x, n.y + d.y};
+        moved = true;
+    }
+    if (ImGui::IsItemHovered()) {
+        std::string tip = n.name + " (" + n.type + "): " + graph::passStatusName(status);
+        if (i < records.size() && !records[i].reason.empty()) tip += "\n" + records[i].reason;
+        if (i < records.size() && !records[i].gpuMs.empty())
+            tip += "\nGPU " + std::to_string(records[i].gpuMs.back()) + " ms";
+        ImGui::SetTooltip("%s", tip.c_str());
+    }
+    drawNodeSlots(draw, origin, n);
+    ImGui::PopID();
+    return moved;
+}
+
+void Inspector::drawNodeSlots(ImDrawList* draw, ImVec2 origin, const LayoutNode& n) {
+    auto at = [&](float x, float y) { return ImVec2(origin.x + x, origin.y + y); };
+    for (const LayoutSlot& s : n.inputs) {
+        draw->AddCircleFilled(at(s.x, s.y), 4.0f, IM_COL32(170, 200, 255, 255));
+        draw->AddText(at(s.x + 8, s.y - 7), IM_COL32(210, 210, 220, 255), s.field.c_str());
+    }
+    // An output's label is a button that previews it.
+    for (const LayoutSlot& s : n.outputs) {
+        const std::string resource = n.name + "." + s.field;
+        const bool shown = resource == mPreview;
+        draw->AddCircleFilled(at(s.x, s.y), shown ? 6.0f : 4.0f,
+                              shown ? IM_COL32(255, 230, 80, 255) : IM_COL32(255, 200, 140, 255));
+        const float w = ImGui::CalcTextSize(s.field.c_str()).x;
+        draw->AddText(at(s.x - 8 - w, s.y - 7), IM_COL32(230, 220, 200, 255), s.field.c_str());
+        ImGui::SetCursorScreenPos(at(s.x - 8 - w, s.y - 7));
+        ImGui::PushID(s.field.c_str());
+        if (ImGui::InvisibleButton("out", ImVec2(w + 14, 14))) {
+            previewField(resource);
+            mSelected = n.name;
         }
-        if (ImGui::IsItemHovered()) {
-            std::string tip = n.name + " (" + n.type + "): " + graph::passStatusName(status);
-            if (i < records.size() && !records[i].reason.empty()) tip += "\n" + records[i].reason;
-            if (i < records.size() && !records[i].gpuMs.empty())
-                tip += "\nGPU " + std::to_string(records[i].gpuMs.back()) + " ms";
-            ImGui::SetTooltip("%s", tip.c_str());
-        }
-        for (const LayoutSlot& s : n.inputs) {
-            draw->AddCircleFilled(at(s.x, s.y), 4.0f, IM_COL32(170, 200, 255, 255));
-            draw->AddText(at(s.x + 8, s.y - 7), IM_COL32(210, 210, 220, 255), s.field.c_str());
-        }
-        for (const LayoutSlot& s : n.outputs) {
-            const std::string resource = n.name + "." + s.field;
-            const bool shown = resource == mPreview;
-            draw->AddCircleFilled(
-                at(s.x, s.y), shown ? 6.0f : 4.0f,
-                shown ? IM_COL32(255, 230, 80, 255) : IM_COL32(255, 200, 140, 255));
-            const float w = ImGui::CalcTextSize(s.field.c_str()).x;
-            draw->AddText(at(s.x - 8 - w, s.y - 7), IM_COL32(230, 220, 200, 255), s.field.c_str());
-            ImGui::SetCursorScreenPos(at(s.x - 8 - w, s.y - 7));
-            ImGui::PushID(s.field.c_str());
-            if (ImGui::InvisibleButton("out", ImVec2(w + 14, 14))) {
-                previewField(resource);
-                mSelected = n.name;
-            }
-            if (ImGui::IsItemHovered()) ImGui::SetTooltip("preview %s", resource.c_str());
-            ImGui::PopID();
-        }
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("preview %s", resource.c_str());
         ImGui::PopID();
     }
-    ImGui::SetCursorScreenPos(origin);
-    ImGui::Dummy(ImVec2(mLayout.width, mLayout.height));
-    ImGui::EndChild();
-    if (moved) relayout();
 }
 
 void Inspector::drawPreviewPanel() {
