@@ -40,8 +40,8 @@ const char* kGeometryNames[] = {"Curved", "FlatWall", "ConstantNormals", "AllZer
 }
 
 // Smooth synthetic G-buffer; `shift` is added to every position.
-BmfrInputs geometry(Geometry kind, float shift = 0.0f) {
-    BmfrInputs in;
+BMFRInputs geometry(Geometry kind, float shift = 0.0f) {
+    BMFRInputs in;
     in.resize(kFitSize, kFitSize);
     for (int y = 0; y < kFitSize; ++y)
         for (int x = 0; x < kFitSize; ++x) {
@@ -70,7 +70,7 @@ BmfrInputs geometry(Geometry kind, float shift = 0.0f) {
 }
 
 // The features of pixel i with positions centred on `mean` (the oracle's convention).
-void features(const BmfrInputs& in, const std::vector<float>& normals, size_t i,
+void features(const BMFRInputs& in, const std::vector<float>& normals, size_t i,
               const double mean[3], double f[10]) {
     f[0] = 1.0;
     for (int c = 0; c < 3; ++c) {
@@ -81,7 +81,7 @@ void features(const BmfrInputs& in, const std::vector<float>& normals, size_t i,
     }
 }
 
-void blockMean(const BmfrInputs& in, int bx, int by, double mean[3]) {
+void blockMean(const BMFRInputs& in, int bx, int by, double mean[3]) {
     mean[0] = mean[1] = mean[2] = 0.0;
     for (int y = 0; y < 32; ++y)
         for (int x = 0; x < 32; ++x) {
@@ -90,9 +90,9 @@ void blockMean(const BmfrInputs& in, int bx, int by, double mean[3]) {
         }
 }
 
-testref::BmfrBlockInput blockOf(const BmfrInputs& in, const std::vector<float>& normals, int bx,
+testref::BMFRBlockInput blockOf(const BMFRInputs& in, const std::vector<float>& normals, int bx,
                                 int by) {
-    testref::BmfrBlockInput b;
+    testref::BMFRBlockInput b;
     for (int y = 0; y < 32; ++y)
         for (int x = 0; x < 32; ++x) {
             size_t i = size_t(by * 32 + y) * kFitSize + size_t(bx * 32 + x);
@@ -111,10 +111,10 @@ size_t pixelOf(int bx, int by, int k) {
 }
 
 // Runs one frame and returns `fitted`.
-std::vector<float> fitOnce(gpu::Context& ctx, const BmfrInputs& in, const std::string& params,
+std::vector<float> fitOnce(gpu::Context& ctx, const BMFRInputs& in, const std::string& params,
                            std::vector<float>* normals = nullptr,
                            std::vector<uint32_t>* stats = nullptr) {
-    BmfrHarness h(ctx, in, params);
+    BMFRHarness h(ctx, in, params);
     if (normals) *normals = h.normalsUsed();
     h.runFrame();
     if (stats) *stats = h.stats();
@@ -133,8 +133,8 @@ class BMFRExactFitTest : public test::GpuTest, public ::testing::WithParamInterf
 
 TEST_P(BMFRExactFitTest, ExactLinearCombinationIsReproduced) {
     const float epsilon = GetParam();
-    BmfrInputs in = geometry(Geometry::Curved);
-    BmfrHarness probe(ctx(), in, kNoOffsets);
+    BMFRInputs in = geometry(Geometry::Curved);
+    BMFRHarness probe(ctx(), in, kNoOffsets);
     const std::vector<float> normals = probe.normalsUsed();
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -191,7 +191,7 @@ TEST_P(BMFRExactFitTest, ExactLinearCombinationIsReproduced) {
 INSTANTIATE_TEST_SUITE_P(Regularization, BMFRExactFitTest, ::testing::Values(0.01f, 0.0f));
 
 TEST_F(BMFRFitTest, NoisyResidualWithinOnePercentOfLeastSquares) {
-    BmfrInputs in = geometry(Geometry::Curved);
+    BMFRInputs in = geometry(Geometry::Curved);
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> noise(-0.5f, 0.5f);
     for (size_t p = 0; p < size_t(kFitSize) * kFitSize; ++p) {
@@ -227,7 +227,7 @@ class BMFRRankDeficientTest : public test::GpuTest,
 
 TEST_P(BMFRRankDeficientTest, FitsTheProjectionAndStaysFinite) {
     const auto [kind, epsilon] = GetParam();
-    BmfrInputs in = geometry(kind);
+    BMFRInputs in = geometry(kind);
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> noise(0.0f, 2.0f);
     for (size_t p = 0; p < size_t(kFitSize) * kFitSize; ++p)

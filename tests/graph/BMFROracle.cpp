@@ -4,11 +4,11 @@
 
 namespace fovea::testref {
 
-BmfrBlockFit bmfrOracleFit(const BmfrBlockInput& in) {
+BMFRBlockFit bmfrOracleFit(const BMFRBlockInput& in) {
     const Eigen::Index n = Eigen::Index(in.target.size() / 3);
     const bool albedo = !in.albedo.empty();
     const Eigen::Index m = albedo ? 13 : 10;
-    BmfrBlockFit out;
+    BMFRBlockFit out;
     out.fitted.assign(size_t(n) * 3, 0.0);
     if (n == 0) return out;
 

@@ -8,7 +8,7 @@
 
 namespace fovea::testref {
 
-struct BmfrBlockInput {
+struct BMFRBlockInput {
     // One entry per valid pixel of the block.
     std::vector<double> position;  // xyz per pixel
     std::vector<double> normal;    // xyz per pixel
@@ -16,13 +16,13 @@ struct BmfrBlockInput {
     std::vector<double> target;    // rgb per pixel (z)
 };
 
-struct BmfrBlockFit {
+struct BMFRBlockFit {
     std::vector<double> fitted;       // rgb per pixel
     double residual2[3] = {0, 0, 0};  // sum of squared residuals per channel
     int rank = 0;
 };
 
 // Features [1, n.xyz, w.xyz, w.xyz^2] (+ albedo.rgb) and their least-squares fit.
-BmfrBlockFit bmfrOracleFit(const BmfrBlockInput& in);
+BMFRBlockFit bmfrOracleFit(const BMFRBlockInput& in);
 
 }  // namespace fovea::testref

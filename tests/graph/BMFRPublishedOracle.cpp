@@ -18,7 +18,7 @@ float bmfrPublishedNoise(uint32_t row, uint32_t column, uint32_t frame, float ep
     return epsilon * 2.0f * (float(a) / 4294967296.0f - 0.5f);
 }
 
-std::vector<double> bmfrPublishedFit(const BmfrPublishedBlock& block, uint32_t frame,
+std::vector<double> bmfrPublishedFit(const BMFRPublishedBlock& block, uint32_t frame,
                                      float epsilon) {
     constexpr int kFeatures = 10;
     std::vector<int> rows;

@@ -29,8 +29,8 @@ float truth(const float* w, int c) {
 }
 
 // A curved surface; colour = truth(position - shift) + uniform noise in [-0.5, 0.5].
-BmfrInputs makeScene(float shift, uint32_t noiseSeed, int size = kStressSize) {
-    BmfrInputs in;
+BMFRInputs makeScene(float shift, uint32_t noiseSeed, int size = kStressSize) {
+    BMFRInputs in;
     in.resize(size, size);
     std::mt19937 rng(noiseSeed);
     std::uniform_real_distribution<float> noise(-0.5f, 0.5f);
@@ -51,7 +51,7 @@ BmfrInputs makeScene(float shift, uint32_t noiseSeed, int size = kStressSize) {
     return in;
 }
 
-void recolor(BmfrInputs& in, uint32_t noiseSeed) {
+void recolor(BMFRInputs& in, uint32_t noiseSeed) {
     std::mt19937 rng(noiseSeed);
     std::uniform_real_distribution<float> noise(-0.5f, 0.5f);
     for (size_t p = 0; p < size_t(in.width) * in.height; ++p) {
@@ -76,7 +76,7 @@ class BMFRBadInputTest : public test::GpuTest, public ::testing::WithParamInterf
 
 TEST_P(BMFRBadInputTest, NonFiniteAndExtremeInputsNeverEnterHistory) {
     const bool fp16 = GetParam();
-    BmfrInputs in = makeScene(0.0f, 1);
+    BMFRInputs in = makeScene(0.0f, 1);
     const float inf = std::numeric_limits<float>::infinity();
     const float nan = std::numeric_limits<float>::quiet_NaN();
     auto px = [&](int x, int y) { return (size_t(y) * kStressSize + x) * 4; };
@@ -87,7 +87,7 @@ TEST_P(BMFRBadInputTest, NonFiniteAndExtremeInputsNeverEnterHistory) {
     in.color[px(25, 5) + 1] = -5.0f;    // negative radiance x1
     in.position[px(12, 12) + 0] = nan;  // non-finite geometry x2
     in.normal[px(30, 30) + 2] = inf;
-    BmfrHarness h(ctx(), in, fp16 ? R"({ "fp16History": true })" : "{}",
+    BMFRHarness h(ctx(), in, fp16 ? R"({ "fp16History": true })" : "{}",
                   {.albedo = true, .emission = true, .motion = true});
     constexpr int kFrames = 5;
     for (int f = 0; f < kFrames; ++f) h.runFrame();
@@ -116,13 +116,13 @@ INSTANTIATE_TEST_SUITE_P(HistoryPrecision, BMFRBadInputTest, ::testing::Values(f
                          });
 
 TEST_F(BMFRStressTest, ZeroAlbedoRemodulatesWithOne) {
-    BmfrInputs in = makeScene(0.0f, 2);
+    BMFRInputs in = makeScene(0.0f, 2);
     for (size_t p = 0; p < size_t(kStressSize) * kStressSize; ++p)
         for (int c = 0; c < 3; ++c) {
             in.albedo[p * 4 + c] = (p % 2 == 0) ? 0.0f : 0.5f;
             in.emission[p * 4 + c] = 0.25f;
         }
-    BmfrHarness h(ctx(), in, "{}", {.albedo = true, .emission = true, .motion = true});
+    BMFRHarness h(ctx(), in, "{}", {.albedo = true, .emission = true, .motion = true});
     h.runFrame();  // no history: phase III passes the fit through
     auto fitted = h.read("fitted");
     auto out = h.read("filtered");
@@ -141,8 +141,8 @@ TEST_P(BMFRFarFromOriginTest, GivesTheSameImage) {
     const std::string variant = GetParam();
     // 64 px: several blocks with moving offsets; 6 frames of fresh noise.
     auto render = [&](float shift) {
-        BmfrInputs in = makeScene(shift, 3, 64);
-        BmfrHarness h(ctx(), in, R"({ "variant": ")" + variant + R"(" })");
+        BMFRInputs in = makeScene(shift, 3, 64);
+        BMFRHarness h(ctx(), in, R"({ "variant": ")" + variant + R"(" })");
         for (int f = 0; f < 6; ++f) {
             recolor(in, 100 + uint32_t(f));
             h.upload(in, true);
@@ -178,8 +178,8 @@ TEST_F(BMFRStressTest, LongStaticAccumulationSaturatesWithoutDrift) {
     // frames, so counters and weights have long been saturated (docs/passes/BMFR.md). The
     // issue's 10 000 frames take about 3 minutes on lavapipe, too long for CI: run them with
     // FOVEA_BMFR_LONG_FRAMES=10000 (docs/benchmarks.md records that run).
-    BmfrInputs in = makeScene(0.0f, 4);
-    BmfrHarness h(ctx(), in, "{}");
+    BMFRInputs in = makeScene(0.0f, 4);
+    BMFRHarness h(ctx(), in, "{}");
     const char* frames = std::getenv("FOVEA_BMFR_LONG_FRAMES");
     const int kFrames = frames ? std::max(300, std::atoi(frames)) : 300;
     for (int f = 0; f < kFrames; ++f) {
@@ -210,9 +210,9 @@ TEST_F(BMFRStressTest, LongStaticAccumulationSaturatesWithoutDrift) {
 }
 
 TEST_F(BMFRStressTest, CameraCutEveryFrameRestartsCleanly) {
-    BmfrInputs in = makeScene(0.0f, 5);
+    BMFRInputs in = makeScene(0.0f, 5);
     in.color[7 * 4] = std::numeric_limits<float>::quiet_NaN();
-    BmfrHarness h(ctx(), in, "{}");
+    BMFRHarness h(ctx(), in, "{}");
     for (int f = 0; f < 4; ++f) {
         h.graph().reset();
         recolor(in, 50 + uint32_t(f));
@@ -233,8 +233,8 @@ TEST_F(BMFRStressTest, CameraCutEveryFrameRestartsCleanly) {
 }
 
 TEST_F(BMFRStressTest, DiscardTestRejectsMovedAndTurnedSurfaces) {
-    BmfrInputs in = makeScene(0.0f, 6);
-    BmfrHarness h(ctx(), in, "{}");
+    BMFRInputs in = makeScene(0.0f, 6);
+    BMFRHarness h(ctx(), in, "{}");
     h.runFrame();
     // Frame 2: the left third moves 1 unit (beyond positionThreshold 0.1), the bottom third
     // turns its normals around (cosine < normalThreshold 0.5); the rest is unchanged.
@@ -256,9 +256,9 @@ TEST_F(BMFRStressTest, DiscardTestRejectsMovedAndTurnedSurfaces) {
 }
 
 TEST_F(BMFRStressTest, AlbedoFeatureWithoutAlbedoInputIsAClearError) {
-    BmfrInputs in = makeScene(0.0f, 7);
+    BMFRInputs in = makeScene(0.0f, 7);
     try {
-        BmfrHarness h(ctx(), in, R"({ "features": "albedo" })", {.albedo = false});
+        BMFRHarness h(ctx(), in, R"({ "features": "albedo" })", {.albedo = false});
         FAIL() << "expected an error";
     } catch (const InputError& e) {
         // A compile-time input error (exit 2 in the CLI) that names the parameter's pointer.
@@ -266,7 +266,7 @@ TEST_F(BMFRStressTest, AlbedoFeatureWithoutAlbedoInputIsAClearError) {
         EXPECT_NE(std::string(e.what()).find("/params/features"), std::string::npos) << e.what();
     }
     // With the input connected the albedo feature set runs (M = 13) and stays finite.
-    BmfrHarness h(ctx(), in, R"({ "features": "albedo" })", {.albedo = true});
+    BMFRHarness h(ctx(), in, R"({ "features": "albedo" })", {.albedo = true});
     h.runFrame();
     EXPECT_TRUE(allFinite(h.read("filtered")));
 }

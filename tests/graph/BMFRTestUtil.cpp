@@ -28,15 +28,15 @@ const PassRegistry& registry() {
 
 }  // namespace
 
-void BmfrInputs::resize(int w, int h) {
+void BMFRInputs::resize(int w, int h) {
     width = w;
     height = h;
     const size_t n = size_t(w) * size_t(h) * 4;
     for (auto* v : {&color, &position, &normal, &albedo, &emission, &motion}) v->assign(n, 0.0f);
 }
 
-BmfrHarness::BmfrHarness(gpu::Context& ctx, const BmfrInputs& in, const std::string& params,
-                         BmfrEdges edges)
+BMFRHarness::BMFRHarness(gpu::Context& ctx, const BMFRInputs& in, const std::string& params,
+                         BMFREdges edges)
     : mCtx(ctx), mEdges(edges) {
     std::vector<std::string> connect = {"color", "position", "normal"};
     if (edges.albedo) connect.push_back("albedo");
@@ -49,9 +49,9 @@ BmfrHarness::BmfrHarness(gpu::Context& ctx, const BmfrInputs& in, const std::str
     upload(in);
 }
 
-BmfrHarness::~BmfrHarness() = default;
+BMFRHarness::~BMFRHarness() = default;
 
-void BmfrHarness::upload(const BmfrInputs& in, bool colorOnly) {
+void BMFRHarness::upload(const BMFRInputs& in, bool colorOnly) {
     test::uploadFeed(mCtx, *mGraph, "color", in.color);
     if (colorOnly) return;
     test::uploadFeed(mCtx, *mGraph, "position", in.position);
@@ -61,25 +61,25 @@ void BmfrHarness::upload(const BmfrInputs& in, bool colorOnly) {
     test::uploadFeed(mCtx, *mGraph, "motion", in.motion);
 }
 
-void BmfrHarness::runFrame() {
+void BMFRHarness::runFrame() {
     mGraph->runFrame();
 }
 
-std::vector<float> BmfrHarness::read(const std::string& field) const {
+std::vector<float> BMFRHarness::read(const std::string& field) const {
     return mGraph->image("bmfr." + field).downloadRGBA32F(mCtx);
 }
 
-std::vector<float> BmfrHarness::normalsUsed() const {
+std::vector<float> BMFRHarness::normalsUsed() const {
     return mGraph->image("feed.normal").downloadRGBA32F(mCtx);
 }
 
-passes::BMFRPass& BmfrHarness::pass() {
+passes::BMFRPass& BMFRHarness::pass() {
     for (auto& node : mGraph->plan().nodes)
         if (node.name == "bmfr") return dynamic_cast<passes::BMFRPass&>(*node.pass);
     throw std::logic_error("no bmfr pass");
 }
 
-std::vector<uint32_t> BmfrHarness::stats() const {
+std::vector<uint32_t> BMFRHarness::stats() const {
     const auto& nodes = mGraph->plan().nodes;
     for (size_t i = 0; i < nodes.size(); ++i)
         if (nodes[i].name == "bmfr")

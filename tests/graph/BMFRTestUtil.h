@@ -11,24 +11,24 @@
 
 namespace fovea::testbmfr {
 
-struct BmfrInputs {
+struct BMFRInputs {
     int width = 0, height = 0;
     // RGBA floats per pixel.
     std::vector<float> color, position, normal, albedo, emission, motion;
     void resize(int w, int h);
 };
 
-struct BmfrEdges {
+struct BMFREdges {
     bool albedo = false, emission = false, motion = true;
 };
 
-class BmfrHarness {
+class BMFRHarness {
 public:
-    BmfrHarness(gpu::Context& ctx, const BmfrInputs& in, const std::string& params,
-                BmfrEdges edges = {});
-    ~BmfrHarness();
+    BMFRHarness(gpu::Context& ctx, const BMFRInputs& in, const std::string& params,
+                BMFREdges edges = {});
+    ~BMFRHarness();
     // Uploads the parts of `in` (all of them, or only the colour).
-    void upload(const BmfrInputs& in, bool colorOnly = false);
+    void upload(const BMFRInputs& in, bool colorOnly = false);
     void runFrame();
     std::vector<float> read(const std::string& field) const;  // "bmfr.<field>"
     std::vector<uint32_t> stats() const;
@@ -39,7 +39,7 @@ public:
 
 private:
     gpu::Context& mCtx;
-    BmfrEdges mEdges;
+    BMFREdges mEdges;
     std::unique_ptr<graph::RenderGraph> mGraph;
 };
 

@@ -28,8 +28,8 @@ constexpr int kVariantSize = 64;  // 3x3 blocks with offsets (one more per axis 
 
 // A curved surface with a disc of misses (position, normal 0, as GBuffer writes them) and noisy
 // positive colour, also at the misses (the oracle fits whatever the rows hold).
-BmfrInputs variantScene() {
-    BmfrInputs in;
+BMFRInputs variantScene() {
+    BMFRInputs in;
     in.resize(kVariantSize, kVariantSize);
     std::mt19937 rng(23);
     std::uniform_real_distribution<float> noise(-0.3f, 0.3f);
@@ -60,10 +60,10 @@ int mirrorIndex(int i, int size) {
 }
 
 // The rows of block (bx, by) with grid offset `offset` as the chosen variant builds them.
-testref::BmfrPublishedBlock variantBlock(const BmfrInputs& in, const std::vector<float>& normals,
+testref::BMFRPublishedBlock variantBlock(const BMFRInputs& in, const std::vector<float>& normals,
                                          int bx, int by, const std::array<int, 2>& offset,
                                          bool mirror, bool fitMisses) {
-    testref::BmfrPublishedBlock b;
+    testref::BMFRPublishedBlock b;
     b.used.assign(testref::kPublishedBlockPixels, false);
     b.position.assign(testref::kPublishedBlockPixels * 3, 0.0);
     b.normal = b.target = b.position;
@@ -94,11 +94,11 @@ class BMFRVariantFitTest : public test::GpuTest,
 // the first block row and column hold 30 rows outside the image, mirrored or absent.
 TEST_P(BMFRVariantFitTest, PublishedFitMatchesTheCpuPortOfTheAuthorsCode) {
     const auto [mirror, fitMisses] = GetParam();
-    const BmfrInputs in = variantScene();
+    const BMFRInputs in = variantScene();
     const std::string params = std::string(R"({ "variant": "published", "blockEdges": ")") +
                                (mirror ? "mirror" : "zero") + R"(", "misses": ")" +
                                (fitMisses ? "fit" : "skip") + R"(" })";
-    BmfrHarness h(ctx(), in, params);
+    BMFRHarness h(ctx(), in, params);
     const auto normals = h.normalsUsed();
     h.runFrame();
     const auto fitted = h.read("fitted");
@@ -150,14 +150,14 @@ class BMFRVariantTest : public test::GpuTest {};
 TEST_F(BMFRVariantTest, BlockMaxClampBoundsTheNonnegativeFit) {
     // A ramp that saturates (a knee) along x: [1, n, w, w^2] cannot bend that sharply, and the
     // least-squares fit overshoots the plateau (by ~9% for a quadratic in one dimension).
-    BmfrInputs in = variantScene();
+    BMFRInputs in = variantScene();
     for (int y = 0; y < kVariantSize; ++y)
         for (int x = 0; x < kVariantSize; ++x)
             for (int c = 0; c < 3; ++c)
                 in.color[(size_t(y) * kVariantSize + x) * 4 + c] =
                     0.1f + std::min(0.15f * float((x + 30) % 32), 1.0f);
     auto fitWith = [&](const char* clamp) {
-        BmfrHarness h(ctx(), in,
+        BMFRHarness h(ctx(), in,
                       std::string(R"({ "variant": "published", "fitClamp": ")") + clamp + R"(" })");
         h.runFrame();
         return h.read("fitted");
@@ -217,7 +217,7 @@ TEST(BMFRVariantTable, PublishedOffsetsPartitionTheImageAsTheAuthorsTable) {
 TEST_F(BMFRVariantTest, UnroundedCountWeighsTheNewSampleByTheInterpolatedCount) {
     constexpr int kW = 64, kH = 8, kBoundary = 32;
     auto run = [&](const char* count) {
-        BmfrInputs in;
+        BMFRInputs in;
         in.resize(kW, kH);
         for (size_t p = 0; p < size_t(kW) * kH; ++p) {
             for (int c = 0; c < 3; ++c) in.normal[p * 4 + c] = c == 2 ? 1.0f : 0.0f;
@@ -226,7 +226,7 @@ TEST_F(BMFRVariantTest, UnroundedCountWeighsTheNewSampleByTheInterpolatedCount) 
             in.color[p * 4 + 0] = in.color[p * 4 + 1] = in.color[p * 4 + 2] = 1.0f;
             in.color[p * 4 + 3] = 1.0f;
         }
-        BmfrHarness h(ctx(), in, std::string(R"({ "historyCount": ")") + count + R"(" })");
+        BMFRHarness h(ctx(), in, std::string(R"({ "historyCount": ")") + count + R"(" })");
         h.runFrame();
         for (size_t p = 0; p < size_t(kW) * kH; ++p) {
             const bool right = int(p % kW) >= kBoundary;
@@ -258,11 +258,11 @@ TEST_F(BMFRVariantTest, UnroundedCountWeighsTheNewSampleByTheInterpolatedCount) 
 
 // `variant` sets every choice left at "variant"; a choice set by name wins over it.
 TEST_F(BMFRVariantTest, VariantResolvesEveryChoiceAndNamedChoicesWin) {
-    BmfrInputs in;
+    BMFRInputs in;
     in.resize(32, 32);
     using Choices = passes::BMFRPass::Choices;
     auto resolved = [&](const std::string& params) {
-        BmfrHarness h(ctx(), in, params);
+        BMFRHarness h(ctx(), in, params);
         return h.pass().choices();
     };
     auto bits = [](const Choices& c) {

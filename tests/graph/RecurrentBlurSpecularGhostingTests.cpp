@@ -21,8 +21,8 @@
 #include "core/scene/CameraPath.h"
 #include "core/vk/Resources.h"
 #include "passes/RegisterPasses.h"
-#include "tests/graph/SceneGraphRig.h"
 #include "tests/graph/GpuTestFixture.h"
+#include "tests/graph/SceneGraphRig.h"
 
 using namespace fovea;
 namespace fs = std::filesystem;
@@ -34,7 +34,7 @@ constexpr int kFrames = 12;
 
 const fs::path kGraphs = fs::path(FOVEA_TEST_DIR) / ".." / "graphs";
 
-class ReBLURSpecularGhosting : public GpuTest {
+class RecurrentBlurSpecularGhosting : public GpuTest {
 protected:
     static void SetUpTestSuite() { registerBuiltinPasses(); }
 
@@ -72,7 +72,7 @@ protected:
     }
 };
 
-TEST_F(ReBLURSpecularGhosting, ParallaxCapBeatsSurfaceMotionAccumulationOnTheFloor) {
+TEST_F(RecurrentBlurSpecularGhosting, ParallaxCapBeatsSurfaceMotionAccumulationOnTheFloor) {
     // Converged specular signal of the last frame (GBuffer-fed: the same primary points).
     const std::string reference =
         R"({ "version": 1, "name": "ref", "passes": [ { "name": "gb", "type": "GBuffer" },)"

@@ -72,7 +72,7 @@ struct Query {
     double roughness, nov, parallax, hitDist, viewDist, roughness2, shrink, frames, worldRadius;
 };
 
-class ReBLURSpecularOracle : public GpuTest {
+class RecurrentBlurSpecularOracle : public GpuTest {
 protected:
     // The shader's results, 4 vec4 per query (see shaders/test/reblur_specular.comp).
     static std::vector<glm::vec4> evaluate(const std::vector<Query>& qs) {
@@ -108,7 +108,7 @@ dvec3 viewAt(const dvec3& n, const dvec3& x, double theta) {
     return glm::normalize(n * std::cos(theta) + x * std::sin(theta));
 }
 
-TEST_F(ReBLURSpecularOracle, ShaderMatchesTheSlidesOnAGrid) {
+TEST_F(RecurrentBlurSpecularOracle, ShaderMatchesTheSlidesOnAGrid) {
     std::vector<Query> qs;
     const dvec3 n = glm::normalize(dvec3(0.2, 0.9, -0.3));
     const dvec3 x = glm::normalize(glm::cross(n, dvec3(0, 0, 1)));
@@ -160,7 +160,7 @@ TEST_F(ReBLURSpecularOracle, ShaderMatchesTheSlidesOnAGrid) {
     }
 }
 
-TEST_F(ReBLURSpecularOracle, RoughnessOneIsTheDiffuseKernelAndRoughnessZeroDoesNotBlur) {
+TEST_F(RecurrentBlurSpecularOracle, RoughnessOneIsTheDiffuseKernelAndRoughnessZeroDoesNotBlur) {
     const dvec3 n(0, 1, 0);
     std::vector<Query> qs;
     for (double r : {1.0, 0.0})

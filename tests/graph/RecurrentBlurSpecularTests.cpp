@@ -1,14 +1,15 @@
 // GPU tests of RecurrentBlur{signal: specular} on the ReBLUR rig (issue 26; seed 004 "Cooking
 // specular denoiser"): a mirror (roughness 0) is not blurred spatially while a rough lobe is,
 // about as much as the diffuse signal at roughness 1. NaN/Inf and the stereo seam:
-// ReBLURBothSignals in RecurrentBlurTests.cpp; the formulas: RecurrentBlurSpecularOracleTests.cpp; reflection
-// ghosting: RecurrentBlurSpecularGhostingTests.cpp.
+// RecurrentBlurBothSignals in RecurrentBlurTests.cpp; the formulas:
+// RecurrentBlurSpecularOracleTests.cpp; reflection ghosting:
+// RecurrentBlurSpecularGhostingTests.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "tests/graph/RecurrentBlurRig.h"
 #include "tests/graph/GpuTestFixture.h"
+#include "tests/graph/RecurrentBlurRig.h"
 
 using namespace fovea;
 using fovea::test::Image;
@@ -17,7 +18,7 @@ using fovea::test::ReblurRig;
 
 namespace {
 
-class ReBLURSpecularTest : public GpuTest {};
+class RecurrentBlurSpecularTest : public GpuTest {};
 
 double variance(const Image& img) {
     double s = 0, s2 = 0;
@@ -34,7 +35,7 @@ double variance(const Image& img) {
 // One noisy frame through the spatial blur alone (no pre-blur, no history): a mirror keeps its
 // pixels (radius 0: seed 004 sharp reflections), a roughness-1 lobe is blurred like the diffuse
 // signal, and an intermediate roughness in between.
-TEST_F(ReBLURSpecularTest, MirrorIsNotBlurredRoughLobeIs) {
+TEST_F(RecurrentBlurSpecularTest, MirrorIsNotBlurredRoughLobeIs) {
     const int w = 24, h = 24;
     const Image in = noise(w, h, 11);
     auto blurredVariance = [&](float roughness, const char* signal) {

@@ -15,8 +15,8 @@
 
 #include "core/scene/Camera.h"
 #include "core/util/Error.h"
-#include "tests/graph/RecurrentBlurRig.h"
 #include "tests/graph/GpuTestFixture.h"
+#include "tests/graph/RecurrentBlurRig.h"
 
 using namespace fovea;
 using fovea::test::Image;
@@ -25,7 +25,7 @@ using fovea::test::ReblurRig;
 
 namespace {
 
-class ReBLURTest : public GpuTest {};
+class RecurrentBlurTest : public GpuTest {};
 
 float at(const Image& img, int w, int x, int y, int c) {
     return img[(size_t(y) * w + x) * 4 + c];
@@ -46,7 +46,7 @@ const char* kBareSpatial =
 
 // The talk's slide "proof N = 2" generalized: with a = 1/(1+N) the output is the exact running
 // mean of all frames while N < 30, then an exponential moving average with weight 1/31.
-TEST_F(ReBLURTest, ProofSlideRunningMeanThenEma) {
+TEST_F(RecurrentBlurTest, ProofSlideRunningMeanThenEma) {
     const int w = 8, h = 8, frames = 40;
     ReblurRig rig(ctx(), w, h, kBareTemporal, kBareSpatial);
     rig.init();
@@ -74,7 +74,7 @@ TEST_F(ReBLURTest, ProofSlideRunningMeanThenEma) {
 
 // N counts 0, 1, 2, ... and stops at 30; a plane that moves towards the camera by 0.5 % of the
 // frustum size keeps its history, by 2 % loses it (threshold 1 %); a camera cut resets it.
-TEST_F(ReBLURTest, FrameCountProgressionAndResets) {
+TEST_F(RecurrentBlurTest, FrameCountProgressionAndResets) {
     const int w = 8, h = 8;
     ReblurRig rig(ctx(), w, h, "{}", "{}");
     rig.init();
@@ -108,7 +108,7 @@ TEST_F(ReBLURTest, FrameCountProgressionAndResets) {
 // The normal test of the disocclusion (ours, disocclusionNormal 0.5): the same positions with the
 // normal turned by 90 degrees (a floor point in the plane of a box's side face: plane distance 0)
 // reset N; a 30-degree turn keeps it; with the test off (-1) the 90-degree turn keeps it too.
-TEST_F(ReBLURTest, TurnedNormalOnTheSamePlaneResets) {
+TEST_F(RecurrentBlurTest, TurnedNormalOnTheSamePlaneResets) {
     const int w = 8, h = 8;
     const Image in = test::constantImage(w, h, 0.4f, 0.5f, 0.6f);
     auto turned = [&](float degrees) {
@@ -140,7 +140,7 @@ TEST_F(ReBLURTest, TurnedNormalOnTheSamePlaneResets) {
 // A noise-free constant passes every stage unchanged for 100 frames with all stages on
 // (pre-blur, firefly suppressor, HistoryFix, blur, post-blur, stabilization): every weighted sum
 // is normalized and nothing in the loop has a gain. Half of the pixels have no indirect hit.
-TEST_F(ReBLURTest, ConstantPassesEveryStageUnchanged) {
+TEST_F(RecurrentBlurTest, ConstantPassesEveryStageUnchanged) {
     const int w = 24, h = 16;
     ReblurRig rig(ctx(), w, h, "{}", "{}", true);
     rig.init();
@@ -166,7 +166,7 @@ TEST_F(ReBLURTest, ConstantPassesEveryStageUnchanged) {
 // The blur radius per N (debug output rbs.radius) against the table of
 // docs/passes/RecurrentBlur.md (NoV = 1, no indirect hit = h = 1, historyFixFrames 3):
 // sqrt: 30, 30, 30, 18.97, 13.42 ... 5.39 at N = 30; linear: 30, 30, 30, 12, 6 ... 1 (the floor).
-TEST_F(ReBLURTest, RadiusPerFrameCountMatchesTable) {
+TEST_F(RecurrentBlurTest, RadiusPerFrameCountMatchesTable) {
     const int w = 8, h = 8;
     struct Row {
         int n;
@@ -197,7 +197,7 @@ TEST_F(ReBLURTest, RadiusPerFrameCountMatchesTable) {
 // Resolution scale (issue 13): maxBlurRadius is pixels at referenceHeight rows. On 8 rows with
 // referenceHeight 16 the table halves: 15 px at N = 0, 2.694 at N = 30 (sqrt); minBlurRadius
 // (1 px) is not scaled.
-TEST_F(ReBLURTest, RadiusScalesWithReferenceHeight) {
+TEST_F(RecurrentBlurTest, RadiusScalesWithReferenceHeight) {
     const int w = 8, h = 8;
     ReblurRig rig(ctx(), w, h, "{}", R"({ "referenceHeight": 16 })");
     rig.init();
@@ -217,7 +217,7 @@ TEST_F(ReBLURTest, RadiusScalesWithReferenceHeight) {
 
 // Both signals (issue 26: RecurrentBlur{signal: specular} with roughness fed) for the robustness
 // tests below: NaN/Inf and the stereo seam.
-class ReBLURBothSignals : public GpuTest, public ::testing::WithParamInterface<const char*> {
+class RecurrentBlurBothSignals : public GpuTest, public ::testing::WithParamInterface<const char*> {
 protected:
     // {"signal": <param>, extra...}
     static std::string withSignal(const std::string& extra = "") {
@@ -225,12 +225,13 @@ protected:
     }
     static bool specular() { return std::string(GetParam()) == "specular"; }
 };
-INSTANTIATE_TEST_SUITE_P(Signal, ReBLURBothSignals, ::testing::Values("diffuse", "specular"));
+INSTANTIATE_TEST_SUITE_P(Signal, RecurrentBlurBothSignals,
+                         ::testing::Values("diffuse", "specular"));
 
 // NaN/Inf radiance, a NaN/Inf hit distance, a NaN normal and an infinite position on one frame:
 // every output of every stage stays finite in that frame and all later ones, and the image
 // returns to the clean value (the feedback loop would otherwise keep a NaN forever).
-TEST_P(ReBLURBothSignals, NaNAndInfNeverBecomePermanent) {
+TEST_P(RecurrentBlurBothSignals, NaNAndInfNeverBecomePermanent) {
     const int w = 16, h = 16;
     ReblurRig rig(ctx(), w, h, withSignal(), withSignal(), true);
     rig.init();
@@ -269,7 +270,7 @@ TEST_P(ReBLURBothSignals, NaNAndInfNeverBecomePermanent) {
 
 // Sky (depth 0) next to geometry, every output first filled with NaN: after one frame every
 // pixel of every output is finite, so every kernel wrote every pixel (NRD #88: sky early-outs).
-TEST_F(ReBLURTest, EveryKernelWritesEveryPixel) {
+TEST_F(RecurrentBlurTest, EveryKernelWritesEveryPixel) {
     const int w = 16, h = 16;
     std::vector<float> depth(size_t(w) * h, 4.0f);
     for (int y = 0; y < h; ++y)
@@ -289,7 +290,7 @@ TEST_F(ReBLURTest, EveryKernelWritesEveryPixel) {
 // full blur (radius 30, much wider than an eye; specular: roughness 1, the widest world-space
 // kernel) and a sideways motion that would fetch history from the other eye, no value crosses
 // the seam: the left eye stays exactly 0.
-TEST_P(ReBLURBothSignals, TapsNeverCrossTheStereoSeam) {
+TEST_P(RecurrentBlurBothSignals, TapsNeverCrossTheStereoSeam) {
     const int w = 32, h = 16;
     const std::string eyes = withSignal(R"(, "eyes": 2)");
     ReblurRig rig(ctx(), w, h, eyes, eyes, true, R"({ "eyes": 2 })");
@@ -322,7 +323,7 @@ TEST_P(ReBLURBothSignals, TapsNeverCrossTheStereoSeam) {
 // = 71 frames (specs §2; noise moves the crossing by a frame or two); the luminance
 // stabilization (which only acts inside the neighbourhood's sigma band) may add lag, its antilag
 // removes it again. The curves are printed for docs/benchmarks.md.
-TEST_F(ReBLURTest, LightSwitchLag) {
+TEST_F(RecurrentBlurTest, LightSwitchLag) {
     const int w = 16, h = 16;
     struct Config {
         const char* label;
@@ -372,7 +373,7 @@ TEST_F(ReBLURTest, LightSwitchLag) {
 // A temporal stage without its recurrent input is rejected at compile (exit 2 in the CLI) with the
 // pass's pointer (`history` is a required input), not run as an accumulation that never has
 // history.
-TEST_F(ReBLURTest, TemporalStageWithoutHistoryEdgeIsAnInputError) {
+TEST_F(RecurrentBlurTest, TemporalStageWithoutHistoryEdgeIsAnInputError) {
     const std::string text = R"({ "version": 1, "name": "x", "passes": [
         { "name": "feed", "type": "Feed" },
         { "name": "rbt", "type": "RecurrentBlurTemporal" } ], "edges": [
@@ -398,7 +399,7 @@ TEST_F(ReBLURTest, TemporalStageWithoutHistoryEdgeIsAnInputError) {
 // right half of a plane appears at frame 10 (N = 0 there, N = 10 on the left); with a motion of
 // +0.5 px the next frame's pixel x = 3 reads taps x = 3 (N = 10) and x = 4 (N = 0) at 1/2 each:
 // N = 6 (a max would give 11).
-TEST_F(ReBLURTest, FrameCountIsTheWeightedTapAverage) {
+TEST_F(RecurrentBlurTest, FrameCountIsTheWeightedTapAverage) {
     const int w = 8, h = 4;
     ReblurRig rig(ctx(), w, h, "{}", "{}");
     rig.init();

@@ -50,7 +50,7 @@ double luminance709(const double* c) {
     return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
 }
 
-std::vector<double> SvgfOracle::atrousLevel(const SvgfOracleParams& p, int w, int h,
+std::vector<double> SVGFOracle::atrousLevel(const SVGFOracleParams& p, int w, int h,
                                             const std::vector<double>& in,
                                             const std::vector<float>& normal,
                                             const std::vector<float>& depth,
@@ -104,7 +104,7 @@ std::vector<double> SvgfOracle::atrousLevel(const SvgfOracleParams& p, int w, in
     return out;
 }
 
-void SvgfOracle::frame(const SvgfOracleFrame& f, bool history) {
+void SVGFOracle::frame(const SVGFOracleFrame& f, bool history) {
     const int w = f.width, h = f.height;
     const size_t n = size_t(w) * size_t(h);
     const auto& color = *f.color;

@@ -6,7 +6,7 @@
 
 namespace fovea::testsvgf {
 
-struct SvgfOracleParams {
+struct SVGFOracleParams {
     int iterations = 5;
     int feedbackTap = 1;  // 1-based level; 0 = the unfiltered accumulation
     double alpha = 0.2, momentsAlpha = 0.2;
@@ -17,7 +17,7 @@ struct SvgfOracleParams {
 };
 
 // One frame's G-buffer (RGBA per pixel; depth in x) and colour, as the pass reads them.
-struct SvgfOracleFrame {
+struct SVGFOracleFrame {
     int width = 0, height = 0;
     const std::vector<float>* color = nullptr;
     const std::vector<float>* normal = nullptr;
@@ -28,11 +28,11 @@ struct SvgfOracleFrame {
 
 double luminance709(const double* c);
 
-class SvgfOracle {
+class SVGFOracle {
 public:
-    explicit SvgfOracle(SvgfOracleParams p) : mP(p) {}
+    explicit SVGFOracle(SVGFOracleParams p) : mP(p) {}
     // Runs one frame; history restarts when `history` is false (first frame, cut).
-    void frame(const SvgfOracleFrame& f, bool history = true);
+    void frame(const SVGFOracleFrame& f, bool history = true);
     // Outputs of the last frame, RGBA per pixel (as the pass's outputs).
     const std::vector<double>& accumulated() const { return mAccumulated; }
     const std::vector<double>& illumination() const { return mIllumination; }
@@ -40,14 +40,14 @@ public:
 
     // One a-trous level (§4.3) on `in` (rgb colour, a = variance) at step 2^level; `hasData` is
     // 1 where a pixel holds data (h > 0). Public for the closed-form tests.
-    static std::vector<double> atrousLevel(const SvgfOracleParams& p, int w, int h,
+    static std::vector<double> atrousLevel(const SVGFOracleParams& p, int w, int h,
                                            const std::vector<double>& in,
                                            const std::vector<float>& normal,
                                            const std::vector<float>& depth,
                                            const std::vector<char>& hasData, int level);
 
 private:
-    SvgfOracleParams mP;
+    SVGFOracleParams mP;
     std::vector<double> mHistColor, mHistMoments, mHistLength;  // rgb+a / 2 / 1 per pixel
     std::vector<double> mAccumulated, mIllumination, mFiltered;
 };

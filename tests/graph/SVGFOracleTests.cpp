@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "core/util/Error.h"
+#include "tests/graph/GpuTestFixture.h"
 #include "tests/graph/SVGFOracle.h"
 #include "tests/graph/SVGFTestUtil.h"
-#include "tests/graph/GpuTestFixture.h"
 
 using namespace fovea;
 using namespace fovea::testsvgf;
@@ -22,8 +22,8 @@ using namespace fovea::testsvgf;
 namespace {
 
 // A flat plane facing the camera, one normal, every pixel a hit, colour `value` everywhere.
-SvgfInputs flatScene(int size, float value) {
-    SvgfInputs in;
+SVGFInputs flatScene(int size, float value) {
+    SVGFInputs in;
     in.resize(size, size);
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x) {
@@ -43,8 +43,8 @@ SvgfInputs flatScene(int size, float value) {
     return in;
 }
 
-SvgfOracleFrame oracleFrame(const SvgfInputs& in, const std::vector<float>& normalUsed) {
-    SvgfOracleFrame f;
+SVGFOracleFrame oracleFrame(const SVGFInputs& in, const std::vector<float>& normalUsed) {
+    SVGFOracleFrame f;
     f.width = in.width;
     f.height = in.height;
     f.color = &in.color;
@@ -60,10 +60,10 @@ SvgfOracleFrame oracleFrame(const SvgfInputs& in, const std::vector<float>& norm
 // --- CPU: the oracle's own closed forms -------------------------------------------------------
 
 TEST(SVGFOracle, RunningMeanWhileOneOverHAboveAlphaThenEma) {
-    SvgfInputs in = flatScene(8, 0.0f);
-    SvgfOracleParams p;
+    SVGFInputs in = flatScene(8, 0.0f);
+    SVGFOracleParams p;
     p.feedbackTap = 0;  // colour history = unfiltered accumulation
-    SvgfOracle o(p);
+    SVGFOracle o(p);
     std::mt19937 rng(3);
     std::uniform_real_distribution<float> u(0.0f, 2.0f);
     double mean = 0.0, ema = 0.0;
@@ -81,8 +81,8 @@ TEST(SVGFOracle, RunningMeanWhileOneOverHAboveAlphaThenEma) {
 
 TEST(SVGFOracle, OneLevelWithoutEdgeStoppingIsTheB3ConvolutionOfADelta) {
     const int w = 33, h = 33;
-    SvgfInputs in = flatScene(w, 0.0f);
-    SvgfOracleParams p;
+    SVGFInputs in = flatScene(w, 0.0f);
+    SVGFOracleParams p;
     p.sigmaNormal = 0.0;       // normal term off
     p.sigmaLuminance = 1e300;  // luminance term off
     std::vector<double> img(size_t(w) * h * 4, 0.0);
@@ -92,7 +92,7 @@ TEST(SVGFOracle, OneLevelWithoutEdgeStoppingIsTheB3ConvolutionOfADelta) {
     const double b3[5] = {1.0 / 16, 1.0 / 4, 3.0 / 8, 1.0 / 4, 1.0 / 16};
     for (int level = 0; level < 3; ++level) {
         const int s = 1 << level;
-        auto out = SvgfOracle::atrousLevel(p, w, h, img, in.normal, in.depth, data, level);
+        auto out = SVGFOracle::atrousLevel(p, w, h, img, in.normal, in.depth, data, level);
         double total = 0.0;
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
@@ -116,17 +116,17 @@ TEST(SVGFOracle, OneLevelWithoutEdgeStoppingIsTheB3ConvolutionOfADelta) {
 }
 
 TEST(SVGFOracle, ConstantStaysConstantForAnySigma) {
-    SvgfInputs in = randomScene(24, 24, 5);
+    SVGFInputs in = randomScene(24, 24, 5);
     for (size_t i = 0; i < in.color.size(); ++i)
         if (i % 4 != 3) in.color[i] = 0.75f;
     for (double sl : {0.01, 4.0, 1e6})
         for (double sn : {0.0, 128.0})
             for (double sz : {0.0, 1.0}) {
-                SvgfOracleParams p;
+                SVGFOracleParams p;
                 p.sigmaLuminance = sl;
                 p.sigmaNormal = sn;
                 p.sigmaDepth = sz;
-                SvgfOracle o(p);
+                SVGFOracle o(p);
                 o.frame(oracleFrame(in, in.normal));
                 for (size_t i = 0; i < size_t(24) * 24; ++i)
                     for (int c = 0; c < 3; ++c)
@@ -139,8 +139,8 @@ TEST(SVGFOracle, ConstantStaysConstantForAnySigma) {
 class SVGFGpu : public test::GpuTest {};
 
 TEST_F(SVGFGpu, RunningMeanThenEmaOnTheGpu) {
-    SvgfInputs in = flatScene(16, 0.0f);
-    SvgfHarness h(ctx(), in, R"({ "feedbackTap": 0, "iterations": 1 })");
+    SVGFInputs in = flatScene(16, 0.0f);
+    SVGFHarness h(ctx(), in, R"({ "feedbackTap": 0, "iterations": 1 })");
     std::mt19937 rng(4);
     std::uniform_real_distribution<float> u(0.0f, 2.0f);
     double mean = 0.0, ema = 0.0, m2 = 0.0, mu1 = 0.0, mu2 = 0.0;
@@ -172,8 +172,8 @@ TEST_F(SVGFGpu, SteadyStateVarianceOfTheEmaIsAlphaOverTwoMinusAlpha) {
     // i.i.d. noise of variance sigma^2 per pixel and frame: after the running mean the EMA's
     // variance tends to alpha/(2-alpha) sigma^2 = 0.111 sigma^2 (9 effective frames).
     const int size = 64;
-    SvgfInputs in = flatScene(size, 0.0f);
-    SvgfHarness h(ctx(), in, R"({ "feedbackTap": 0, "iterations": 1 })");
+    SVGFInputs in = flatScene(size, 0.0f);
+    SVGFHarness h(ctx(), in, R"({ "feedbackTap": 0, "iterations": 1 })");
     std::mt19937 rng(11);
     std::normal_distribution<float> noise(1.0f, 0.5f);  // sigma^2 = 0.25
     for (int t = 0; t < 40; ++t) {
@@ -198,13 +198,13 @@ TEST_F(SVGFGpu, SteadyStateVarianceOfTheEmaIsAlphaOverTwoMinusAlpha) {
 }
 
 TEST_F(SVGFGpu, ConstantStaysConstantAndOutputStaysInsideItsTaps) {
-    SvgfInputs in = randomScene(32, 32, 9);
+    SVGFInputs in = randomScene(32, 32, 9);
     for (const char* params :
          {R"({ "sigmaLuminance": 0.01 })", R"({ "sigmaNormal": 0, "sigmaDepth": 0 })", "{}"}) {
-        SvgfInputs cst = in;
+        SVGFInputs cst = in;
         for (size_t i = 0; i < cst.color.size(); ++i)
             if (i % 4 != 3) cst.color[i] = 0.75f;
-        SvgfHarness h(ctx(), cst, params);
+        SVGFHarness h(ctx(), cst, params);
         for (int f = 0; f < 2; ++f) h.runFrame();
         auto ill = h.read("illumination");
         for (size_t i = 0; i < ill.size(); ++i) {
@@ -213,7 +213,7 @@ TEST_F(SVGFGpu, ConstantStaysConstantAndOutputStaysInsideItsTaps) {
             }
         }
         // Random colours: every output is a convex combination, inside [min, max] of the input.
-        SvgfHarness r(ctx(), in, params);
+        SVGFHarness r(ctx(), in, params);
         r.runFrame();
         auto out = r.read("illumination");
         float lo = 1e30f, hi = -1e30f;
@@ -233,20 +233,20 @@ class SVGFGpuOracle : public test::GpuTest, public ::testing::WithParamInterface
 
 TEST_P(SVGFGpuOracle, RandomGBufferMatchesTheDoublePrecisionTwin) {
     const int tap = GetParam();
-    SvgfInputs in = randomScene(32, 24, 21);
-    SvgfHarness h(ctx(), in, R"({ "feedbackTap": )" + std::to_string(tap) + " }");
+    SVGFInputs in = randomScene(32, 24, 21);
+    SVGFHarness h(ctx(), in, R"({ "feedbackTap": )" + std::to_string(tap) + " }");
     const std::vector<float> normals = h.readFeed("normal");  // rgba16f-rounded, as the GPU
     const std::vector<float> albedo = h.readFeed("albedo");   // rgba16f-rounded too
-    SvgfOracleParams p;
+    SVGFOracleParams p;
     p.feedbackTap = tap;
-    SvgfOracle o(p);
+    SVGFOracle o(p);
     // 6 frames: h passes historyForVariance (spatial -> temporal variance) and 1/h < alpha.
     for (int f = 0; f < 6; ++f) {
         recolor(in, 100u + uint32_t(f));
         if (f == 3) in.color[in.at(5, 7) + 3] = 0.0f;  // one untraced pixel keeps its history
         h.upload(in, true);
         h.runFrame();
-        SvgfOracleFrame frame = oracleFrame(in, normals);
+        SVGFOracleFrame frame = oracleFrame(in, normals);
         frame.albedo = &albedo;
         o.frame(frame);
         in.color[in.at(5, 7) + 3] = 1.0f;
@@ -272,9 +272,9 @@ TEST_P(SVGFGpuOracle, RandomGBufferMatchesTheDoublePrecisionTwin) {
 INSTANTIATE_TEST_SUITE_P(EveryFeedbackTap, SVGFGpuOracle, ::testing::Values(0, 1, 2, 3, 4, 5));
 
 TEST_F(SVGFGpu, FeedbackTapBeyondIterationsIsAClearError) {
-    SvgfInputs in = flatScene(8, 1.0f);
+    SVGFInputs in = flatScene(8, 1.0f);
     try {
-        SvgfHarness h(ctx(), in, R"({ "iterations": 2, "feedbackTap": 3 })");
+        SVGFHarness h(ctx(), in, R"({ "iterations": 2, "feedbackTap": 3 })");
         FAIL() << "expected an error";
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("/params/feedbackTap"), std::string::npos) << e.what();
@@ -287,8 +287,8 @@ TEST_F(SVGFGpu, FeedbackTapBeyondIterationsIsAClearError) {
 // still holds the variance pass's output after the frame.
 TEST_F(SVGFGpu, VariancePassIsBitExactOnceTheHistoryIsLong) {
     const int size = 32;
-    SvgfInputs in = randomScene(size, size, 4);
-    SvgfHarness h(ctx(), in, R"({ "iterations": 1 })");
+    SVGFInputs in = randomScene(size, size, 4);
+    SVGFHarness h(ctx(), in, R"({ "iterations": 1 })");
     for (int f = 0; f < 6; ++f) {
         recolor(in, 100u + uint32_t(f));
         h.upload(in, true);

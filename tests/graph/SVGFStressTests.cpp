@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "tests/graph/SVGFTestUtil.h"
 #include "tests/graph/GpuTestFixture.h"
+#include "tests/graph/SVGFTestUtil.h"
 
 using namespace fovea;
 using namespace fovea::testsvgf;
@@ -29,8 +29,8 @@ constexpr float kSpacing = 0.1f;  // world units between background pixels
 // Background plane (z = 4, positions kSpacing apart: beyond positionThreshold 0.02 * 4 = 0.08, so
 // the 3x3 fallback cannot borrow a neighbour's history) and an 8x8 occluder at z = 2 whose left
 // edge is at `occX`, moving +2 px per frame (motion -2 on it, 0 elsewhere).
-SvgfInputs occluderScene(int size, int occX, uint32_t colorSeed) {
-    SvgfInputs in;
+SVGFInputs occluderScene(int size, int occX, uint32_t colorSeed) {
+    SVGFInputs in;
     in.resize(size, size);
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x) {
@@ -63,9 +63,9 @@ bool covered(int x, int y, int occX) {
 TEST_F(SVGFStress, MovingOccluderRestartsRevealedPixelsAndKeepsTheRestBitExact) {
     const int size = 48, frames = 4;
     for (int tap : {0, 1}) {
-        SvgfInputs a = occluderScene(size, 2, 1), b = occluderScene(size, -1, 1);
+        SVGFInputs a = occluderScene(size, 2, 1), b = occluderScene(size, -1, 1);
         const std::string params = R"({ "feedbackTap": )" + std::to_string(tap) + " }";
-        SvgfHarness ha(ctx(), a, params), hb(ctx(), b, params);
+        SVGFHarness ha(ctx(), a, params), hb(ctx(), b, params);
         for (int f = 0; f < frames; ++f) {
             const int occX = 2 + 2 * f;
             a = occluderScene(size, occX, 10u + uint32_t(f));
@@ -103,15 +103,15 @@ TEST_F(SVGFStress, NanAndInfinityInEveryInputNeverReachTheOutputs) {
     const float bad[3] = {std::numeric_limits<float>::quiet_NaN(),
                           std::numeric_limits<float>::infinity(),
                           -std::numeric_limits<float>::infinity()};
-    SvgfInputs in = randomScene(32, 32, 3);
-    auto poison = [&](SvgfInputs& s) {
+    SVGFInputs in = randomScene(32, 32, 3);
+    auto poison = [&](SVGFInputs& s) {
         int k = 0;
         for (auto* v :
              {&s.color, &s.position, &s.normal, &s.depth, &s.albedo, &s.emission, &s.motion})
             for (int j = 0; j < 3; ++j, ++k) (*v)[s.at(3 + 4 * k % 28, 2 + k)] = bad[j];
     };
     poison(in);
-    SvgfHarness h(ctx(), in, "{}");
+    SVGFHarness h(ctx(), in, "{}");
     for (int f = 0; f < 24; ++f) {
         recolor(in, 70u + uint32_t(f));
         poison(in);
@@ -133,11 +133,11 @@ TEST_F(SVGFStress, FireflyStaysBoundedAndKeepsTheFrameMean) {
     // edge-stopping weights are not exactly mean-preserving: 2 % measured here, 0 % when the
     // old centre-only luminance test left the firefly unfiltered, issue 12).
     const int size = 48;
-    SvgfInputs in = occluderScene(size, -1, 1);
+    SVGFInputs in = occluderScene(size, -1, 1);
     for (size_t i = 0; i < in.color.size(); ++i)
         if (i % 4 != 3) in.color[i] = 0.01f;
     in.color[in.at(24, 24)] = in.color[in.at(24, 24) + 1] = in.color[in.at(24, 24) + 2] = 1e4f;
-    SvgfHarness h(ctx(), in, R"({ "iterations": 3 })");
+    SVGFHarness h(ctx(), in, R"({ "iterations": 3 })");
     h.runFrame();
     auto out = h.read("illumination");
     double meanIn = 0.0, meanOut = 0.0, peak = 0.0;
@@ -158,9 +158,9 @@ TEST_F(SVGFStress, FireflyStaysBoundedAndKeepsTheFrameMean) {
 }
 
 TEST_F(SVGFStress, CameraCutEveryFrameRestartsCleanly) {
-    SvgfInputs in = randomScene(32, 32, 4);
+    SVGFInputs in = randomScene(32, 32, 4);
     in.color[in.at(7, 0)] = std::numeric_limits<float>::quiet_NaN();
-    SvgfHarness h(ctx(), in, "{}");
+    SVGFHarness h(ctx(), in, "{}");
     for (int f = 0; f < 4; ++f) {
         h.graph().reset();
         recolor(in, 50u + uint32_t(f));
@@ -181,8 +181,8 @@ TEST_F(SVGFStress, CameraCutEveryFrameRestartsCleanly) {
 }
 
 TEST_F(SVGFStress, AllRejectedReprojectionRestartsEveryPixel) {
-    SvgfInputs in = randomScene(32, 32, 8);
-    SvgfHarness h(ctx(), in, "{}");
+    SVGFInputs in = randomScene(32, 32, 8);
+    SVGFHarness h(ctx(), in, "{}");
     h.runFrame();
     uint32_t hits = 0;
     for (size_t i = 0; i < size_t(32) * 32; ++i) {
@@ -206,13 +206,13 @@ TEST_F(SVGFStress, HistoryLengthIsTheWeightedAverageOfTheKeptTaps) {
     // (motion +0.5): pixel 7 straddles taps 7 (h 1) and 8 (h 4) with weights 1/2 each.
     // Weighted average: 2.5 + 1 = 3.5 (a max would give 5, the nearest tap 2 or 5).
     const int size = 16;
-    SvgfInputs in = occluderScene(size, -1, 1);
+    SVGFInputs in = occluderScene(size, -1, 1);
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x) {
             in.position[in.at(x, y)] = 0.01f * float(x);
             in.position[in.at(x, y) + 1] = 0.01f * float(y);
         }
-    SvgfHarness h(ctx(), in, "{}");
+    SVGFHarness h(ctx(), in, "{}");
     for (int f = 0; f < 3; ++f) h.runFrame();
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < 8; ++x) in.motion[in.at(x, y)] = 1000.0f;
@@ -242,11 +242,11 @@ TEST_F(SVGFStress, HeavyTailedNoiseKeepsItsMean) {
     // variance estimate's absolute-scale luminance term and the centre-only (asymmetric)
     // luminance weight lost 49 % in the first frame and 19 % after 8.
     const int size = 64;
-    SvgfInputs in = occluderScene(size, -1, 1);
+    SVGFInputs in = occluderScene(size, -1, 1);
     std::mt19937 rng(5);
     std::vector<size_t> order(size_t(size) * size);
     for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-    SvgfHarness h(ctx(), in, "{}");
+    SVGFHarness h(ctx(), in, "{}");
     for (int f = 0; f < 8; ++f) {
         std::shuffle(order.begin(), order.end(), rng);
         for (size_t k = 0; k < order.size(); ++k) {

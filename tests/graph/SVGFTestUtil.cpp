@@ -31,7 +31,7 @@ const PassRegistry& registry() {
 
 }  // namespace
 
-void SvgfInputs::resize(int w, int h) {
+void SVGFInputs::resize(int w, int h) {
     width = w;
     height = h;
     const size_t n = size_t(w) * size_t(h) * 4;
@@ -39,8 +39,8 @@ void SvgfInputs::resize(int w, int h) {
         v->assign(n, 0.0f);
 }
 
-SvgfHarness::SvgfHarness(gpu::Context& ctx, const SvgfInputs& in, const std::string& params,
-                         SvgfEdges edges)
+SVGFHarness::SVGFHarness(gpu::Context& ctx, const SVGFInputs& in, const std::string& params,
+                         SVGFEdges edges)
     : mCtx(ctx) {
     std::vector<std::string> connect = {"color", "position", "normal", "depth"};
     if (edges.albedo) connect.push_back("albedo");
@@ -53,9 +53,9 @@ SvgfHarness::SvgfHarness(gpu::Context& ctx, const SvgfInputs& in, const std::str
     upload(in);
 }
 
-SvgfHarness::~SvgfHarness() = default;
+SVGFHarness::~SVGFHarness() = default;
 
-void SvgfHarness::upload(const SvgfInputs& in, bool colorOnly) {
+void SVGFHarness::upload(const SVGFInputs& in, bool colorOnly) {
     test::uploadFeed(mCtx, *mGraph, "color", in.color);
     if (colorOnly) return;
     test::uploadFeed(mCtx, *mGraph, "position", in.position);
@@ -66,19 +66,19 @@ void SvgfHarness::upload(const SvgfInputs& in, bool colorOnly) {
     test::uploadFeed(mCtx, *mGraph, "motion", in.motion);
 }
 
-void SvgfHarness::runFrame() {
+void SVGFHarness::runFrame() {
     mGraph->runFrame();
 }
 
-std::vector<float> SvgfHarness::read(const std::string& field) const {
+std::vector<float> SVGFHarness::read(const std::string& field) const {
     return mGraph->image("svgf." + field).downloadRGBA32F(mCtx);
 }
 
-std::vector<float> SvgfHarness::readFeed(const std::string& field) const {
+std::vector<float> SVGFHarness::readFeed(const std::string& field) const {
     return mGraph->image("feed." + field).downloadRGBA32F(mCtx);
 }
 
-std::vector<uint32_t> SvgfHarness::stats() const {
+std::vector<uint32_t> SVGFHarness::stats() const {
     const auto& nodes = mGraph->plan().nodes;
     for (size_t i = 0; i < nodes.size(); ++i)
         if (nodes[i].name == "svgf")
@@ -86,8 +86,8 @@ std::vector<uint32_t> SvgfHarness::stats() const {
     throw std::logic_error("no svgf pass");
 }
 
-SvgfInputs randomScene(int w, int h, uint32_t seed) {
-    SvgfInputs in;
+SVGFInputs randomScene(int w, int h, uint32_t seed) {
+    SVGFInputs in;
     in.resize(w, h);
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
@@ -120,7 +120,7 @@ SvgfInputs randomScene(int w, int h, uint32_t seed) {
     return in;
 }
 
-void recolor(SvgfInputs& in, uint32_t seed) {
+void recolor(SVGFInputs& in, uint32_t seed) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     for (int y = 0; y < in.height; ++y)

@@ -11,7 +11,7 @@
 
 namespace fovea::testsvgf {
 
-struct SvgfInputs {
+struct SVGFInputs {
     int width = 0, height = 0;
     // RGBA floats per pixel (depth: x only).
     std::vector<float> color, position, normal, depth, albedo, emission, motion;
@@ -19,16 +19,16 @@ struct SvgfInputs {
     size_t at(int x, int y) const { return (size_t(y) * size_t(width) + size_t(x)) * 4; }
 };
 
-struct SvgfEdges {
+struct SVGFEdges {
     bool albedo = true, emission = true, motion = true;
 };
 
-class SvgfHarness {
+class SVGFHarness {
 public:
-    SvgfHarness(gpu::Context& ctx, const SvgfInputs& in, const std::string& params,
-                SvgfEdges edges = {});
-    ~SvgfHarness();
-    void upload(const SvgfInputs& in, bool colorOnly = false);
+    SVGFHarness(gpu::Context& ctx, const SVGFInputs& in, const std::string& params,
+                SVGFEdges edges = {});
+    ~SVGFHarness();
+    void upload(const SVGFInputs& in, bool colorOnly = false);
     void runFrame();
     std::vector<float> read(const std::string& field) const;  // "svgf.<field>" (RGBA floats)
     std::vector<uint32_t> stats() const;
@@ -43,9 +43,9 @@ private:
 
 // A static scene of `w` x `h` pixels: two tilted planes with a depth step, a sphere-ish bump in
 // the normals, a few misses, random albedo; colour = noise around a smooth signal (seeded).
-SvgfInputs randomScene(int w, int h, uint32_t seed);
+SVGFInputs randomScene(int w, int h, uint32_t seed);
 // New noisy colours for the same scene.
-void recolor(SvgfInputs& in, uint32_t seed);
+void recolor(SVGFInputs& in, uint32_t seed);
 
 bool allFinite(const std::vector<float>& v);
 

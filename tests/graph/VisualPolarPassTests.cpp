@@ -520,7 +520,7 @@ TEST_F(VisualPolarPassTest, StereoEyesUseTheirOwnHalfAndGaze) {
 // accumulates at every traced texel; a small camera move keeps most of the history (the motion
 // maps the previous screen position into the grid; screen-pixel motion would miss); a camera cut
 // resets it.
-TEST_F(VisualPolarPassTest, BmfrHistoryFollowsVisualPolarMotion) {
+TEST_F(VisualPolarPassTest, BMFRHistoryFollowsVisualPolarMotion) {
     registerBuiltinPasses();
     const uint32_t n = 64;
     const scene::Scene cornell = scene::loadBuiltinScene("builtin:cornell");

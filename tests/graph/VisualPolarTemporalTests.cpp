@@ -246,7 +246,7 @@ TEST_F(VisualPolarTemporalTest, TaaHistoryFollowsColumnHeightsAndPhiSeam) {
 // Each pass then holds 2 samples, half of them f(p + d) from its history, at every texel whose
 // previous position lies in the grid; screen addressing (the control) loses or misplaces the
 // history of the fovea's texels.
-TEST_F(VisualPolarTemporalTest, BmfrAndSvgfHistoryFollowColumnHeights) {
+TEST_F(VisualPolarTemporalTest, BMFRAndSVGFHistoryFollowColumnHeights) {
     const uint32_t w = 96, h = 80;
     const glm::vec2 gaze(0.45f, 0.55f);
     const glm::dvec2 d(1.3, -0.9);
@@ -315,7 +315,7 @@ TEST_F(VisualPolarTemporalTest, BmfrAndSvgfHistoryFollowColumnHeights) {
 // position filtered in one frame stays that image (the taps sit around the texel in the screen,
 // wrapped on phi, at each column's own height); screen addressing of the VP image averages texels
 // of other phi in the fovea and loses one side at the phi = 0 seam.
-TEST_F(VisualPolarTemporalTest, SvgfSpatialTapsFollowColumnHeightsAndPhiSeam) {
+TEST_F(VisualPolarTemporalTest, SVGFSpatialTapsFollowColumnHeightsAndPhiSeam) {
     const uint32_t w = 96, h = 80;
     const glm::vec2 gaze(0.45f, 0.55f);
     auto cam = camera(w, h, gaze);
@@ -493,7 +493,7 @@ TEST_F(VisualPolarTemporalTest, StaircaseHistoryUsesThePreviousHeights) {
 // own offsets off: with constant features the fit is one value per block, so the fitted image
 // steps exactly where the block columns start ((x + ox) mod 32 = 0, ox = this frame's offset);
 // without the staircase BMFR keeps its own grid (x mod 32 = 0).
-TEST_F(VisualPolarTemporalTest, BmfrBlockColumnsFollowTheStaircase) {
+TEST_F(VisualPolarTemporalTest, BMFRBlockColumnsFollowTheStaircase) {
     const uint32_t w = 256, h = 192;
     const glm::vec2 gaze(0.5f, 0.5f);
     auto cam = camera(w, h, gaze);
