@@ -19,8 +19,6 @@ using glm::vec3;
 
 constexpr uint64_t kForestSeed = 0x5EED'F0E5'7000'0001ull;
 constexpr float kHalfExtent = 80.0f;  // metres; the ground spans [-80, 80]^2
-constexpr int kGroundCells = 128;     // per side: 2 * 128^2 = 32768 ground triangles
-constexpr int kTreeGrid = 20;         // one tree candidate per 8 m cell
 constexpr int kRocks = 200;
 constexpr int kCrystals = 40;
 constexpr int kLights = 80;
@@ -56,8 +54,8 @@ vec3 groundNormal(float x, float z) {
     return glm::normalize(vec3(-dx, 1.0f, -dz));
 }
 
-void addGround(MeshBuilder& b, uint32_t material) {
-    const int n = kGroundCells;
+void addGround(MeshBuilder& b, uint32_t material, int cells) {
+    const int n = cells;
     const float step = 2.0f * kHalfExtent / float(n);
     uint32_t first = uint32_t(b.mesh().positions.size());
     for (int j = 0; j <= n; ++j) {
@@ -125,26 +123,28 @@ float crownRadius(float t, float r) {
 }
 
 void addTree(MeshBuilder& b, const vec3& root, Rng& rng, uint32_t bark, uint32_t leavesA,
-             uint32_t leavesB, uint32_t needles) {
+             uint32_t leavesB, uint32_t needles, int detail) {
+    const int d = detail;  // segments and rings of every surface of revolution are multiplied
     bool conifer = rng.uniform() < 0.45f;
     float trunkHeight = conifer ? rng.range(2.0f, 3.5f) : rng.range(3.0f, 5.5f);
     float trunk = rng.range(0.18f, 0.35f);
-    addRevolution(b, root - vec3(0.0f, 0.3f, 0.0f), trunkHeight + 0.3f, 10, 3, bark, &trunkRadius,
-                  trunk, rng, 0.1f);
+    addRevolution(b, root - vec3(0.0f, 0.3f, 0.0f), trunkHeight + 0.3f, 10 * d, 3 * d, bark,
+                  &trunkRadius, trunk, rng, 0.1f);
     if (conifer) {
         // Four stacked cones, each smaller and higher.
         float radius = rng.range(2.0f, 3.2f), y = trunkHeight * 0.6f;
         for (int i = 0; i < 4; ++i) {
             float h = radius * 1.6f;
-            addRevolution(b, root + vec3(0.0f, y, 0.0f), h, 16, 2, needles, &coneRadius, radius,
-                          rng, 0.15f);
+            addRevolution(b, root + vec3(0.0f, y, 0.0f), h, 16 * d, 2 * d, needles, &coneRadius,
+                          radius, rng, 0.15f);
             y += h * 0.55f;
             radius *= 0.75f;
         }
     } else {
         float radius = rng.range(2.2f, 3.6f);
-        addRevolution(b, root + vec3(0.0f, trunkHeight * 0.75f, 0.0f), radius * 2.2f, 16, 10,
-                      rng.uniform() < 0.5f ? leavesA : leavesB, &crownRadius, radius, rng, 0.25f);
+        addRevolution(b, root + vec3(0.0f, trunkHeight * 0.75f, 0.0f), radius * 2.2f, 16 * d,
+                      10 * d, rng.uniform() < 0.5f ? leavesA : leavesB, &crownRadius, radius, rng,
+                      0.25f);
     }
 }
 
@@ -190,9 +190,9 @@ void addCrystal(MeshBuilder& b, const vec3& base, float size, uint32_t material)
 
 }  // namespace
 
-Scene buildForestScene() {
+Scene buildForestScene(const ForestLayout& layout) {
     Scene scene;
-    scene.source = "builtin:forest";
+    scene.source = layout.source;
     auto material = [&](const char* name, vec3 albedo, vec3 emission = vec3(0.0f)) {
         Material m;
         m.name = name;
@@ -213,14 +213,15 @@ Scene buildForestScene() {
 
     Rng rng(kForestSeed);
     MeshBuilder b(scene.mesh);
-    addGround(b, ground);
-    const float cell = 2.0f * kHalfExtent / float(kTreeGrid);
-    for (int j = 0; j < kTreeGrid; ++j) {
-        for (int i = 0; i < kTreeGrid; ++i) {
+    addGround(b, ground, layout.groundCells);
+    const float cell = 2.0f * kHalfExtent / float(layout.treeGrid);
+    for (int j = 0; j < layout.treeGrid; ++j) {
+        for (int i = 0; i < layout.treeGrid; ++i) {
             if (rng.uniform() > 0.9f) continue;  // a few clearings
             float x = -kHalfExtent + cell * (float(i) + rng.range(0.2f, 0.8f));
             float z = -kHalfExtent + cell * (float(j) + rng.range(0.2f, 0.8f));
-            addTree(b, {x, groundHeight(x, z), z}, rng, bark, leavesA, leavesB, needles);
+            addTree(b, {x, groundHeight(x, z), z}, rng, bark, leavesA, leavesB, needles,
+                    layout.detail);
         }
     }
     for (int r = 0; r < kRocks; ++r) {

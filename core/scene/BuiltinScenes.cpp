@@ -165,7 +165,11 @@ Scene buildFurnace() {
 const std::map<std::string, std::function<Scene()>>& registry() {
     static const std::map<std::string, std::function<Scene()>> kScenes = {
         {"cornell", &buildCornell},
-        {"forest", &buildForestScene},
+        {"forest", [] { return buildForestScene(); }},
+        {"forest-10m",
+         [] {
+             return buildForestScene({"builtin:forest-10m", 1024, 80, 2});
+         }},
         {"plane", &buildPlane},
         {"furnace", &buildFurnace},
         {"glossy", &buildGlossyScene}};

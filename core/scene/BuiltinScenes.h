@@ -3,6 +3,8 @@
 //   cornell  the Cornell box from Cornell's own measurement data (millimetres, 38 triangles)
 //   forest   the heavy procedural benchmark scene (~200k triangles, 80 point lights), seeded,
 //            identical on every run
+//   forest-10m  the same forest at 11.3M triangles (denser trees, finer tessellation), for
+//            build, memory and traversal benchmarks at the scale of production scenes
 //   plane    a diffuse plane under a large emissive quad: one bounce, known radiance
 //   furnace  a closed box whose faces all emit Le and reflect rho: radiance Le / (1 - rho)
 //   glossy   a roughness ramp (metal and dielectric spheres, roughness 0.05..1) over a glossy
@@ -53,8 +55,18 @@ glm::vec3 glossySphereCenter(int row, int column);
 
 }  // namespace builtin
 
-// The forest generator (BuiltinForest.cpp).
-Scene buildForestScene();
+// The forest generator (BuiltinForest.cpp). The default layout is builtin:forest (212,416
+// triangles); builtin:forest-10m keeps the area, lights, rocks and crystals and raises the ground
+// resolution, the tree density and every tree's tessellation to 11.3M triangles, the size of the
+// scenes researchers bring (San Miguel, Bistro; issue 28), every triangle in the BVH (no
+// instancing).
+struct ForestLayout {
+    std::string source = "builtin:forest";
+    int groundCells = 128;  // per side: 2 * cells^2 ground triangles
+    int treeGrid = 20;      // tree candidates per side (one per 160 m / treeGrid cell)
+    int detail = 1;         // multiplies every tree's segments and rings
+};
+Scene buildForestScene(const ForestLayout& layout = {});
 // The roughness ramp (BuiltinGlossy.cpp).
 Scene buildGlossyScene();
 

@@ -385,6 +385,9 @@ TEST(SceneBuiltin, CornellBoxMatchesTheCornellData) {
 
 TEST(SceneBuiltin, ScenesAreDeterministic) {
     for (const std::string& name : builtinSceneNames()) {
+        // forest-10m is forest's generator at another layout (11.3M triangles: pinned, not
+        // loaded twice, in SceneGltfLarge; this file also runs under the sanitizers).
+        if (name == "builtin:forest-10m") continue;
         Scene a = loadScene(name), b = loadScene(name);
         EXPECT_EQ(a.mesh.positions, b.mesh.positions) << name;
         EXPECT_EQ(a.mesh.triangles, b.mesh.triangles) << name;

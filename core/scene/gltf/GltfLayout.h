@@ -61,11 +61,19 @@ inline uint64_t elementBytes(std::string_view type, uint64_t componentType) {
 }
 
 // Limits that keep a hostile file from asking for unbounded memory: an accessor without buffer
-// view (all zeros) or a node tree instancing a mesh many times costs memory without bytes in the
-// file. Far above any real scene fovea is meant for (documented in docs/scenes.md).
-constexpr uint64_t kMaxAccessorElements = uint64_t(1) << 24;  // 16.7M
-constexpr uint64_t kMaxSceneTriangles = uint64_t(1) << 26;
-constexpr uint64_t kMaxSceneVertices = uint64_t(1) << 27;
+// view (all zeros, or only sparse values) or a node tree instancing a mesh many times costs memory
+// without bytes in the file. An accessor with a buffer view is bounded by its bytes, which must
+// be in the file (2 GiB at most), so it may be as large as the scene limits allow: one primitive
+// can hold a whole 10M- or 60M-triangle scene (issue 28). Documented in docs/scenes.md.
+constexpr uint64_t kMaxSceneTriangles = uint64_t(1) << 26;        // 67.1M
+constexpr uint64_t kMaxSceneVertices = uint64_t(1) << 27;         // 134.2M
+constexpr uint64_t kMaxZeroAccessorElements = uint64_t(1) << 24;  // 16.7M, no buffer view
+// The most elements an accessor may have: indices of kMaxSceneTriangles triangles, or
+// kMaxSceneVertices vertices; kMaxZeroAccessorElements without a buffer view.
+constexpr uint64_t maxAccessorElements(bool hasBufferView, bool indices) {
+    if (!hasBufferView) return kMaxZeroAccessorElements;
+    return indices ? 3 * kMaxSceneTriangles : kMaxSceneVertices;
+}
 // Largest |coordinate| of a vertex after its node transform, and largest emission (factor x
 // strength). 32-bit floats hold 3.4e38, but bounds extents, BVH surface areas (squared lengths)
 // and variance/regression terms (squared radiance) overflow long before: sqrt(3.4e38) = 1.8e19,
