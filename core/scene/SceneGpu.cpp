@@ -351,6 +351,17 @@ void SceneGpu::addBuffer(gpu::Context& context, const std::string& name, const v
                                        vk::BufferUsageFlagBits::eTransferDst;
     // Round up to 16 so the tail of a vec4 array never straddles the end.
     const size_t size = std::max(kMinBufferBytes, (bytes + 15) / 16 * 16);
+    // A scene larger than the device binds is a clear error naming the buffer and the limit,
+    // before any allocation (issue 28: never a crash or a driver error).
+    const auto& limits = context.limits();
+    const uint64_t range = uniform ? limits.maxUniformBufferRange : limits.maxStorageBufferRange;
+    if (size > range)
+        throw RuntimeError("SceneGpu: the scene's '" + name + "' needs " + std::to_string(size) +
+                           " bytes (" + std::to_string(mTriangleOrder.size()) +
+                           " triangles) but '" + context.deviceName() + "' binds at most " +
+                           std::to_string(range) + " bytes per " +
+                           (uniform ? "uniform" : "storage") +
+                           " buffer: render a smaller scene or use a device with a larger limit");
     auto buffer = std::make_unique<gpu::Buffer>(context, size, usage, false, name);
     if (bytes > 0) buffer->upload(context, data, bytes);
     mBuffers.emplace_back(name, std::move(buffer));

@@ -263,6 +263,9 @@ Context::Context(const ContextOptions& options)
     resolveValidationSwitches(options);
     createInstance(chooseInstanceLayersAndExtensions(options));
     pickPhysicalDevice(options.device);
+    if (options.storageBufferRangeCap != 0)
+        mProperties.limits.maxStorageBufferRange = uint32_t(std::min<uint64_t>(
+            mProperties.limits.maxStorageBufferRange, options.storageBufferRangeCap));
     createDevice(options);
     createSharedObjects();
 }

@@ -28,6 +28,9 @@ struct ContextOptions {
     // the window system asks for) and VK_KHR_swapchain on the device. Empty/false for headless.
     std::vector<std::string> instanceExtensions{};
     bool swapchain = false;
+    // Non-zero: limits().maxStorageBufferRange is at most this many bytes, as on a smaller
+    // device (how the tests check that a scene too large for the device is a clear error).
+    uint64_t storageBufferRangeCap = 0;
 };
 
 // Optional device features that were available and are enabled (shaders may rely on these only

@@ -588,3 +588,25 @@ TEST_F(SceneGpuTest, LoadedScenes) {
     }
 }
 #endif
+
+// Issue 28: a scene larger than the device binds per storage buffer is an error naming the buffer,
+// its size and the device's limit, before any allocation; never a crash or a driver error.
+TEST(SceneGpuLimits, SceneOverTheDeviceBufferLimitIsAClearError) {
+    gpu::ContextOptions options;
+    options.validation = true;
+    options.storageBufferRangeCap = 256;  // as a device binding 256 bytes per storage buffer
+    gpu::Context small(options);
+    EXPECT_EQ(small.limits().maxStorageBufferRange, 256u);
+    const Scene cornell = loadScene("builtin:cornell");  // 38 triangles: 608 bytes of triangles
+    try {
+        SceneGpu gpu(small, cornell);
+        FAIL() << "uploaded";
+    } catch (const RuntimeError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("binds at most 256 bytes per storage buffer"), std::string::npos)
+            << what;
+        EXPECT_NE(what.find("38 triangles"), std::string::npos) << what;
+        EXPECT_NE(what.find("'scene_"), std::string::npos) << what;
+    }
+    EXPECT_TRUE(small.validationMessages().empty());
+}
