@@ -4,8 +4,10 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <limits>
 #include <string>
+#include <thread>
 
 #include "core/util/Error.h"
 
@@ -14,6 +16,8 @@ namespace {
 
 constexpr uint32_t kMaxBins = 64;
 constexpr uint32_t kMaxLeafLimit = 16;
+// Below this many triangles a subtree is built on the calling thread (a thread costs more).
+constexpr uint32_t kParallelTriangles = 65536;
 
 bool finite(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
@@ -53,10 +57,8 @@ uint32_t medianLevels(uint32_t n, uint32_t maxLeaf) {
 }  // namespace
 
 struct Bvh::Builder {
-    Builder(std::vector<uint32_t>& orderOut, std::vector<BvhNode>& nodesOut,
-            const BvhBuildOptions& options)
+    Builder(std::vector<uint32_t>& orderOut, const BvhBuildOptions& options)
         : order(orderOut),
-          nodes(nodesOut),
           bins(std::clamp(options.bins, 2u, kMaxBins)),
           maxLeaf(std::clamp(options.maxLeafSize, 1u, kMaxLeafLimit)),
           traversalCost(std::max(0.0f, options.traversalCost)),
@@ -64,7 +66,6 @@ struct Bvh::Builder {
 
     std::vector<glm::vec3> triMin, triMax, centroid;  // per mesh triangle
     std::vector<uint32_t>& order;
-    std::vector<BvhNode>& nodes;
     uint32_t bins;
     uint32_t maxLeaf;
     double traversalCost;
@@ -77,7 +78,13 @@ struct Bvh::Builder {
         return std::min(bins - 1, static_cast<uint32_t>(b));
     }
 
-    void build(uint32_t begin, uint32_t end, uint32_t depth) {
+    // Builds the subtree over order[begin, end) depth first into `out` (indices relative to
+    // out's start). For `spawnLevels` more levels, a node over at least kParallelTriangles
+    // builds its left subtree on another thread into its own array, then both are appended with
+    // their child indices shifted: the same splits in the same order, so the tree is identical to
+    // a one-thread build (the partitions touch disjoint ranges of `order`).
+    void build(uint32_t begin, uint32_t end, uint32_t depth, std::vector<BvhNode>& nodes,
+               uint32_t spawnLevels) {
         const uint32_t nodeIndex = static_cast<uint32_t>(nodes.size());
         nodes.emplace_back();
         Box box, centroids;
@@ -112,9 +119,29 @@ struct Bvh::Builder {
             }
         }
         nodes[nodeIndex].count = kBvhInternalNode;
-        build(begin, mid, depth + 1);
+        if (spawnLevels > 0 && n >= kParallelTriangles) {
+            std::vector<BvhNode> left, right;
+            auto leftTask = std::async(std::launch::async, [&] {
+                build(begin, mid, depth + 1, left, spawnLevels - 1);
+            });
+            build(mid, end, depth + 1, right, spawnLevels - 1);
+            leftTask.get();
+            appendSubtree(nodes, left);
+            nodes[nodeIndex].index = static_cast<uint32_t>(nodes.size());
+            appendSubtree(nodes, right);
+            return;
+        }
+        build(begin, mid, depth + 1, nodes, 0);
         nodes[nodeIndex].index = static_cast<uint32_t>(nodes.size());
-        build(mid, end, depth + 1);
+        build(mid, end, depth + 1, nodes, 0);
+    }
+
+    static void appendSubtree(std::vector<BvhNode>& out, const std::vector<BvhNode>& subtree) {
+        const uint32_t offset = static_cast<uint32_t>(out.size());
+        for (BvhNode node : subtree) {
+            if (!node.isLeaf()) node.index += offset;  // a leaf's index is into order: global
+            out.push_back(node);
+        }
     }
 
     // Splits [begin, end) at its middle along the widest centroid axis. Always returns a
@@ -210,7 +237,7 @@ Bvh::Bvh(const TriangleMesh& mesh, const BvhBuildOptions& options) {
     const uint32_t n = static_cast<uint32_t>(triangleCount);
     mStats.triangleCount = n;
 
-    Builder builder(mOrder, mNodes, options);
+    Builder builder(mOrder, options);
     builder.triMin.resize(n);
     builder.triMax.resize(n);
     builder.centroid.resize(n);
@@ -240,7 +267,12 @@ Bvh::Bvh(const TriangleMesh& mesh, const BvhBuildOptions& options) {
     mStats.invalidTriangles = static_cast<uint32_t>(invalid.size());
 
     mNodes.reserve(size_t(validCount) * 2 + 1);
-    builder.build(0, validCount, 0);
+    // Threads: one subtree per core at the top of the tree (2 cores: 2 levels, 4 subtrees, so
+    // an uneven split still keeps both busy).
+    const uint32_t threads = std::max(1u, std::thread::hardware_concurrency());
+    uint32_t spawnLevels = 0;
+    while ((1u << spawnLevels) < threads * 2 && spawnLevels < 6) ++spawnLevels;
+    builder.build(0, validCount, 0, mNodes, threads > 1 ? spawnLevels : 0);
     mOrder.insert(mOrder.end(), invalid.begin(), invalid.end());
     mNodes.shrink_to_fit();
     if (validCount > 0) {

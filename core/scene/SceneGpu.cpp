@@ -21,6 +21,8 @@ namespace {
 // keeps a feature compiled in may declare the buffer without ever reading it.
 constexpr size_t kMinBufferBytes = 16;
 
+// scene_vertices, scene_triangles, scene_bvh and scene_bvh_triangles are bound unless the scene
+// reads them through their addresses (SCENE_GEOMETRY_BY_ADDRESS).
 const std::vector<std::string> kResourceNames = {"scene_info",          "scene_vertices",
                                                  "scene_triangles",     "scene_bvh",
                                                  "scene_bvh_triangles", "scene_materials",
@@ -343,25 +345,36 @@ std::vector<std::string> SceneGpu::resourceNames() {
     return kResourceNames;
 }
 
+uint64_t SceneGpu::addGeometryBuffer(gpu::Context& context, const std::string& name,
+                                     const void* data, size_t bytes) {
+    addBuffer(context, name, data, bytes, false, mGeometryByAddress);
+    return mGeometryByAddress ? mBuffers.back().second->deviceAddress() : 0;
+}
+
 void SceneGpu::addBuffer(gpu::Context& context, const std::string& name, const void* data,
-                         size_t bytes, bool uniform) {
-    const vk::BufferUsageFlags usage = (uniform ? vk::BufferUsageFlagBits::eUniformBuffer
-                                                : vk::BufferUsageFlagBits::eStorageBuffer) |
-                                       vk::BufferUsageFlagBits::eTransferSrc |
-                                       vk::BufferUsageFlagBits::eTransferDst;
+                         size_t bytes, bool uniform, bool addressed) {
+    vk::BufferUsageFlags usage = (uniform ? vk::BufferUsageFlagBits::eUniformBuffer
+                                          : vk::BufferUsageFlagBits::eStorageBuffer) |
+                                 vk::BufferUsageFlagBits::eTransferSrc |
+                                 vk::BufferUsageFlagBits::eTransferDst;
+    if (addressed) usage |= vk::BufferUsageFlagBits::eShaderDeviceAddress;
     // Round up to 16 so the tail of a vec4 array never straddles the end.
     const size_t size = std::max(kMinBufferBytes, (bytes + 15) / 16 * 16);
     // A scene larger than the device binds is a clear error naming the buffer and the limit,
     // before any allocation (issue 28: never a crash or a driver error).
     const auto& limits = context.limits();
-    const uint64_t range = uniform ? limits.maxUniformBufferRange : limits.maxStorageBufferRange;
+    const uint64_t range = addressed ? context.maxAllocationBytes()
+                           : uniform ? limits.maxUniformBufferRange
+                                     : limits.maxStorageBufferRange;
     if (size > range)
         throw RuntimeError("SceneGpu: the scene's '" + name + "' needs " + std::to_string(size) +
                            " bytes (" + std::to_string(mTriangleOrder.size()) +
                            " triangles) but '" + context.deviceName() + "' binds at most " +
                            std::to_string(range) + " bytes per " +
-                           (uniform ? "uniform" : "storage") +
-                           " buffer: render a smaller scene or use a device with a larger limit");
+                           (addressed ? "allocation"
+                            : uniform ? "uniform buffer"
+                                      : "storage buffer") +
+                           ": render a smaller scene or use a device with a larger limit");
     auto buffer = std::make_unique<gpu::Buffer>(context, size, usage, false, name);
     if (bytes > 0) buffer->upload(context, data, bytes);
     mBuffers.emplace_back(name, std::move(buffer));
@@ -441,12 +454,28 @@ void SceneGpu::uploadBuffers(gpu::Context& context, const Bvh& bvh, const LightT
     const TriangleUpload& triangles = packed.triangles;
     const TextureUpload& textures = packed.textures;
     mBuffers.clear();
+    // The arrays that grow with the triangle count are read through their addresses when one of
+    // them is larger than a storage descriptor may bind (a 10M-triangle scene on lavapipe).
+    const uint64_t range = context.limits().maxStorageBufferRange;
+    mGeometryByAddress = std::max({bytesOf(packed.vertices), bytesOf(triangles.triangles),
+                                   bytesOf(bvh.nodes()), bytesOf(triangles.positions)}) > range;
+    if (mGeometryByAddress && !context.features().bufferDeviceAddress)
+        throw RuntimeError("SceneGpu: the scene's geometry is larger than '" +
+                           context.deviceName() + "' binds per storage buffer (" +
+                           std::to_string(range) +
+                           " bytes) and the device lacks "
+                           "bufferDeviceAddress to read it otherwise");
+    // First: scene_info carries their addresses.
+    mInfo.vertexAddress = addGeometryBuffer(context, "scene_vertices", packed.vertices.data(),
+                                            bytesOf(packed.vertices));
+    mInfo.triangleAddress = addGeometryBuffer(
+        context, "scene_triangles", triangles.triangles.data(), bytesOf(triangles.triangles));
+    mInfo.nodeAddress =
+        addGeometryBuffer(context, "scene_bvh", bvh.nodes().data(), bytesOf(bvh.nodes()));
+    mInfo.bvhTriangleAddress = addGeometryBuffer(
+        context, "scene_bvh_triangles", triangles.positions.data(), bytesOf(triangles.positions));
     addBuffer(context, "scene_info", &mInfo, sizeof(mInfo), true);
-    addBuffer(context, "scene_vertices", packed.vertices.data(), bytesOf(packed.vertices));
-    addBuffer(context, "scene_triangles", triangles.triangles.data(), bytesOf(triangles.triangles));
-    addBuffer(context, "scene_bvh", bvh.nodes().data(), bytesOf(bvh.nodes()));
-    addBuffer(context, "scene_bvh_triangles", triangles.positions.data(),
-              bytesOf(triangles.positions));
+    std::rotate(mBuffers.begin(), mBuffers.end() - 1, mBuffers.end());  // scene_info first
     addBuffer(context, "scene_materials", materials.materials.data(), bytesOf(materials.materials));
     addBuffer(context, "scene_textures", textures.table.data(), bytesOf(textures.table));
     addBuffer(context, "scene_texels", textures.texels.data(), bytesOf(textures.texels));
@@ -475,14 +504,17 @@ std::vector<std::pair<std::string, std::string>> SceneGpu::defines() const {
             {"SCENE_HAS_VERTEX_COLORS", mVertexColors ? "1" : "0"},
             {"SCENE_HAS_NORMAL_MAPS", mNormalMaps ? "1" : "0"},
             {"SCENE_HAS_ENVIRONMENT", flag(kSceneEnvironment)},
-            {"SCENE_HAS_ALPHA", flag(kSceneAlpha)}};
+            {"SCENE_HAS_ALPHA", flag(kSceneAlpha)},
+            {"SCENE_GEOMETRY_BY_ADDRESS", mGeometryByAddress ? "1" : "0"}};
 }
 
 const gpu::Buffer& SceneGpu::buffer(std::string_view name) const {
     for (const auto& [n, buffer] : mBuffers)
         if (n == name) return *buffer;
+    std::vector<std::string> names;
+    for (const auto& [n, buffer] : mBuffers) names.push_back(n);
     throw RuntimeError("SceneGpu has no buffer '" + std::string(name) + "'" +
-                       didYouMean(name, kResourceNames));
+                       didYouMean(name, names));
 }
 
 std::vector<std::pair<std::string, uint64_t>> SceneGpu::memoryStats() const {

@@ -83,6 +83,9 @@ struct Info {  // scene_info (uniform; std140 == std430 for this member order)
     float totalPower, emissivePower, punctualPower, radius;  // radius of the bounding sphere
     glm::vec4 boundsMin;                                     // xyz; w unused
     glm::vec4 boundsMax;
+    // Device addresses of scene_vertices, scene_triangles, scene_bvh, scene_bvh_triangles: the
+    // shaders read these through buffer references (no descriptor range limit; issue 28).
+    uint64_t vertexAddress, triangleAddress, nodeAddress, bvhTriangleAddress;
 };
 
 // scene_environment (SCENE_HAS_ENVIRONMENT): this header, then one vec4 per texel (rgb radiance,
@@ -106,8 +109,9 @@ static_assert(sizeof(Material) == 64);
 static_assert(sizeof(Texture) == 16);
 static_assert(sizeof(Light) == 64 && offsetof(Light, range) == 12 && offsetof(Light, type) == 28 &&
               offsetof(Light, spotScale) == 44 && offsetof(Light, spotOffset) == 48);
-static_assert(sizeof(Info) == 96 && offsetof(Info, totalPower) == 48 &&
-              offsetof(Info, boundsMin) == 64);
+static_assert(sizeof(Info) == 128 && offsetof(Info, totalPower) == 48 &&
+              offsetof(Info, boundsMin) == 64 && offsetof(Info, vertexAddress) == 96 &&
+              offsetof(Info, bvhTriangleAddress) == 120);  // std140 uvec2: 8-byte aligned
 
 }  // namespace layout
 
@@ -168,13 +172,21 @@ private:
     void setFeatures(const LightTable& lights, const Packed& packed);
     void uploadBuffers(gpu::Context& context, const Bvh& bvh, const LightTable& lights,
                        const Packed& packed);
+    // `addressed`: also a device address (no descriptor range limit; checked against the
+    // device's largest allocation instead).
     void addBuffer(gpu::Context& context, const std::string& name, const void* data, size_t bytes,
-                   bool uniform = false);
+                   bool uniform = false, bool addressed = false);
+    // A geometry array: bound, or read through its device address (returned; else 0) when
+    // mGeometryByAddress.
+    uint64_t addGeometryBuffer(gpu::Context& context, const std::string& name, const void* data,
+                               size_t bytes);
 
     std::vector<std::pair<std::string, std::unique_ptr<gpu::Buffer>>> mBuffers;
     std::vector<uint32_t> mTriangleOrder;
     BvhStats mBvhStats;
     bool mVertexColors = false;
+    // Geometry arrays read through device addresses (one exceeds maxStorageBufferRange).
+    bool mGeometryByAddress = false;
     bool mNormalMaps = false;
     bool mStochasticAlpha = false;
     layout::Info mInfo{};

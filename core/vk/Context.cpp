@@ -361,8 +361,11 @@ void Context::pickPhysicalDevice(const std::string& spec) {
     mProperties = mPhysicalDevice.getProperties();
     auto props2 =
         mPhysicalDevice
-            .getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceDriverProperties>();
+            .getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceDriverProperties,
+                            vk::PhysicalDeviceMaintenance3Properties>();
     const auto& driver = props2.get<vk::PhysicalDeviceDriverProperties>();
+    mMaxAllocationBytes =
+        props2.get<vk::PhysicalDeviceMaintenance3Properties>().maxMemoryAllocationSize;
     mDriverName = driver.driverName.data();
     mDriverInfo = driver.driverInfo.data();
     mQueueFamily = *pickQueueFamily(mPhysicalDevice);

@@ -70,6 +70,9 @@ public:
     uint32_t queueFamily() const { return mQueueFamily; }
     const vk::PhysicalDeviceProperties& properties() const { return mProperties; }
     const vk::PhysicalDeviceLimits& limits() const { return mProperties.limits; }
+    // The largest single memory allocation (Vulkan 1.1 maxMemoryAllocationSize): the bound on a
+    // buffer read through its device address.
+    uint64_t maxAllocationBytes() const { return mMaxAllocationBytes; }
     const DeviceFeatures& features() const { return mFeatures; }
 
     std::string deviceName() const;
@@ -172,6 +175,7 @@ private:
     mutable std::recursive_mutex mSubmitMutex;  // guards the queue and the command pool
     uint32_t mQueueFamily = 0;
     vk::PhysicalDeviceProperties mProperties;
+    uint64_t mMaxAllocationBytes = 0;
     std::string mDriverName;
     std::string mDriverInfo;
     DeviceFeatures mFeatures;

@@ -89,9 +89,9 @@ bool bvhIntersectTriangle(vec3 origin, vec3 direction, vec3 v0, vec3 e1, vec3 e2
 bool bvhIntersectStoredTriangle(uint triangle, vec3 origin, vec3 direction, float tMin,
                                 float tMax, out float t, out vec2 barycentrics) {
     uint base = 3u * triangle;
-    return bvhIntersectTriangle(origin, direction, scene_bvh_triangles.positions[base].xyz,
-                                scene_bvh_triangles.positions[base + 1u].xyz,
-                                scene_bvh_triangles.positions[base + 2u].xyz, tMin, tMax, t,
+    return bvhIntersectTriangle(origin, direction, sceneBvhPosition(base).xyz,
+                                sceneBvhPosition(base + 1u).xyz,
+                                sceneBvhPosition(base + 2u).xyz, tMin, tMax, t,
                                 barycentrics);
 }
 
@@ -99,7 +99,7 @@ bool bvhIntersectStoredTriangle(uint triangle, vec3 origin, vec3 direction, floa
 // A candidate hit the ray passes through (alpha test). v0.w was loaded with the triangle's
 // vertices: triangles of opaque materials (0) stop here without a material lookup.
 bool bvhPassesThrough(uint triangle, vec2 barycentrics, uint alphaSeed) {
-    return scene_bvh_triangles.positions[3u * triangle].w != 0.0 &&
+    return sceneBvhPosition(3u * triangle).w != 0.0 &&
            sceneAlphaPassesThrough(triangle, barycentrics, alphaSeed);
 }
 #endif
@@ -124,7 +124,7 @@ bool bvhClosestHit(vec3 origin, vec3 direction, float tMin, float tMax, uint alp
     hit.triangle = kBvhNoHit;
     hit.barycentrics = vec2(0.0);
     vec3 invDir = bvhSafeInverse(direction);
-    BvhNode root = scene_bvh.nodes[0];
+    BvhNode root = sceneBvhNode(0);
     if (bvhBoxEntry(root.boundsMin, root.boundsMax, origin, invDir, tMin, tMax) == kBvhMiss)
         return false;
 
@@ -135,7 +135,7 @@ bool bvhClosestHit(vec3 origin, vec3 direction, float tMin, float tMax, uint alp
     uint sp = 0u;
     uint nodeIndex = 0u;
     while (true) {
-        BvhNode node = scene_bvh.nodes[nodeIndex];
+        BvhNode node = sceneBvhNode(nodeIndex);
         if (node.count != kBvhInternalNode) {
             for (uint i = node.index; i < node.index + node.count; ++i) {
                 float t;
@@ -155,8 +155,8 @@ bool bvhClosestHit(vec3 origin, vec3 direction, float tMin, float tMax, uint alp
         } else {
             uint left = nodeIndex + 1u;
             uint right = node.index;
-            BvhNode l = scene_bvh.nodes[left];
-            BvhNode r = scene_bvh.nodes[right];
+            BvhNode l = sceneBvhNode(left);
+            BvhNode r = sceneBvhNode(right);
             float tl = bvhBoxEntry(l.boundsMin, l.boundsMax, origin, invDir, tMin, hit.t);
             float tr = bvhBoxEntry(r.boundsMin, r.boundsMax, origin, invDir, tMin, hit.t);
             bool hitL = tl != kBvhMiss;
@@ -200,12 +200,12 @@ bool bvhOccluded(vec3 origin, vec3 direction, float tMin, float tMax, uint alpha
     vec3 invDir = bvhSafeInverse(direction);
     uint stackNode[kBvhMaxDepth];
     uint sp = 0u;
-    BvhNode root = scene_bvh.nodes[0];
+    BvhNode root = sceneBvhNode(0);
     if (bvhBoxEntry(root.boundsMin, root.boundsMax, origin, invDir, tMin, tMax) == kBvhMiss)
         return false;
     uint nodeIndex = 0u;
     while (true) {
-        BvhNode node = scene_bvh.nodes[nodeIndex];
+        BvhNode node = sceneBvhNode(nodeIndex);
         if (node.count != kBvhInternalNode) {
             for (uint i = node.index; i < node.index + node.count; ++i) {
                 float t;
@@ -220,8 +220,8 @@ bool bvhOccluded(vec3 origin, vec3 direction, float tMin, float tMax, uint alpha
         } else {
             uint left = nodeIndex + 1u;
             uint right = node.index;
-            BvhNode l = scene_bvh.nodes[left];
-            BvhNode r = scene_bvh.nodes[right];
+            BvhNode l = sceneBvhNode(left);
+            BvhNode r = sceneBvhNode(right);
             bool hitL =
                 bvhBoxEntry(l.boundsMin, l.boundsMax, origin, invDir, tMin, tMax) != kBvhMiss;
             bool hitR =

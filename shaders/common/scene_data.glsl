@@ -11,6 +11,19 @@
 // scene_environment has width 0 and emits nothing).
 #ifndef FOVEA_SCENE_DATA_GLSL
 #define FOVEA_SCENE_DATA_GLSL
+// The four arrays that grow with the triangle count (vertices, triangles, BVH nodes and
+// intersection positions) are storage bindings, unless one of them is larger than a descriptor
+// may bind (maxStorageBufferRange: 128 MiB on lavapipe, which a 10M-triangle scene's BVH alone
+// exceeds; issue 28). Then SceneGpu defines SCENE_GEOMETRY_BY_ADDRESS 1 and they are read through
+// the device addresses in scene_info. Not always: on lavapipe the address path traverses 15-20 %
+// slower (docs/scene-gpu.md).
+#ifndef SCENE_GEOMETRY_BY_ADDRESS
+#define SCENE_GEOMETRY_BY_ADDRESS 0
+#endif
+#if SCENE_GEOMETRY_BY_ADDRESS
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
+#endif
 
 #ifndef SCENE_HAS_TEXTURES
 #define SCENE_HAS_TEXTURES 1
@@ -132,8 +145,42 @@ layout(std140, binding = 16) uniform SceneInfo {
     float radius;  // of the scene's bounding sphere
     vec4 boundsMin;
     vec4 boundsMax;
+    uvec2 vertexAddress;  // device addresses of the arrays below (low, high word)
+    uvec2 triangleAddress;
+    uvec2 nodeAddress;
+    uvec2 bvhTriangleAddress;
 } scene_info;
 
+#if SCENE_GEOMETRY_BY_ADDRESS
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SceneVertexArray {
+    SceneVertex vertices[];
+};
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SceneTriangleArray {
+    SceneTriangle triangles[];
+};
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SceneBvhNodeArray {
+    BvhNode nodes[];
+};
+// Per GPU triangle: v0, v1 - v0, v2 - v0 (3 vec4s): the leaf loop streams them contiguously.
+// v0.w = 1 when the triangle's material is alpha-tested (params.w != 0), else 0.
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SceneBvhPositionArray {
+    vec4 positions[];
+};
+// The host names them scene_vertices, scene_triangles, scene_bvh, scene_bvh_triangles
+// (SceneGpu::buffer); indices are in range by construction (BVH build and upload).
+SceneVertex sceneVertex(uint i) {
+    return SceneVertexArray(scene_info.vertexAddress).vertices[i];
+}
+SceneTriangle sceneTriangle(uint i) {
+    return SceneTriangleArray(scene_info.triangleAddress).triangles[i];
+}
+BvhNode sceneBvhNode(uint i) {
+    return SceneBvhNodeArray(scene_info.nodeAddress).nodes[i];
+}
+vec4 sceneBvhPosition(uint i) {
+    return SceneBvhPositionArray(scene_info.bvhTriangleAddress).positions[i];
+}
+#else
 layout(std430, binding = 17) readonly buffer SceneVertices {
     SceneVertex vertices[];
 } scene_vertices;
@@ -148,6 +195,19 @@ layout(std430, binding = 19) readonly buffer SceneBvh {
 layout(std430, binding = 20) readonly buffer SceneBvhTriangles {
     vec4 positions[];
 } scene_bvh_triangles;
+SceneVertex sceneVertex(uint i) {
+    return scene_vertices.vertices[i];
+}
+SceneTriangle sceneTriangle(uint i) {
+    return scene_triangles.triangles[i];
+}
+BvhNode sceneBvhNode(uint i) {
+    return scene_bvh.nodes[i];
+}
+vec4 sceneBvhPosition(uint i) {
+    return scene_bvh_triangles.positions[i];
+}
+#endif
 layout(std430, binding = 21) readonly buffer SceneMaterials {
     SceneMaterial materials[];
 } scene_materials;

@@ -156,10 +156,10 @@ vec4 sceneVertexColor(uint vertex) {
 
 // Vertex 0 gets 1 - b.x - b.y.
 SceneSurface sceneSurface(uint triangle, vec2 barycentrics) {
-    SceneTriangle tri = scene_triangles.triangles[triangle];
-    SceneVertex a = scene_vertices.vertices[tri.indices.x];
-    SceneVertex b = scene_vertices.vertices[tri.indices.y];
-    SceneVertex c = scene_vertices.vertices[tri.indices.z];
+    SceneTriangle tri = sceneTriangle(triangle);
+    SceneVertex a = sceneVertex(tri.indices.x);
+    SceneVertex b = sceneVertex(tri.indices.y);
+    SceneVertex c = sceneVertex(tri.indices.z);
     vec3 w = vec3(1.0 - barycentrics.x - barycentrics.y, barycentrics.x, barycentrics.y);
     SceneSurface s;
     s.position = a.positionU.xyz * w.x + b.positionU.xyz * w.y + c.positionU.xyz * w.z;
@@ -234,7 +234,7 @@ void sceneApplyNormalMap(inout SceneSurface s) {
     // textures.w >= 0 only when scene_tangents holds one frame per vertex (SceneGpu).
     int texture = scene_materials.materials[s.material].textures.w;
     if (texture < 0) return;
-    uvec3 corners = scene_triangles.triangles[s.triangle].indices;
+    uvec3 corners = sceneTriangle(s.triangle).indices;
     vec3 w = vec3(1.0 - s.barycentrics.x - s.barycentrics.y, s.barycentrics);
     vec4 tangent = scene_tangents.tangents[corners.x] * w.x +
                    scene_tangents.tangents[corners.y] * w.y +
@@ -272,9 +272,9 @@ float sceneAlphaOf(SceneTriangle tri, SceneMaterial m, vec2 b) {
     float alpha = m.baseColor.a;
 #if SCENE_HAS_TEXTURES
     if (m.textures.x >= 0) {
-        SceneVertex va = scene_vertices.vertices[tri.indices.x];
-        SceneVertex vb = scene_vertices.vertices[tri.indices.y];
-        SceneVertex vc = scene_vertices.vertices[tri.indices.z];
+        SceneVertex va = sceneVertex(tri.indices.x);
+        SceneVertex vb = sceneVertex(tri.indices.y);
+        SceneVertex vc = sceneVertex(tri.indices.z);
         vec3 w = vec3(1.0 - b.x - b.y, b.x, b.y);
         vec2 uv = vec2(va.positionU.w, va.normalV.w) * w.x +
                   vec2(vb.positionU.w, vb.normalV.w) * w.y +
@@ -296,7 +296,7 @@ float sceneAlphaOf(SceneTriangle tri, SceneMaterial m, vec2 b) {
 // True when a ray with this seed passes through `triangle` at barycentrics b. Opaque materials
 // (threshold 0) never let a ray through and read no texel.
 bool sceneAlphaPassesThrough(uint triangle, vec2 b, uint seed) {
-    SceneTriangle tri = scene_triangles.triangles[triangle];
+    SceneTriangle tri = sceneTriangle(triangle);
     SceneMaterial m = scene_materials.materials[tri.material];
     float threshold = m.params.w;
     if (threshold == 0.0) return false;
@@ -309,7 +309,7 @@ bool sceneAlphaPassesThrough(uint triangle, vec2 b, uint seed) {
 // BLEND. Light sampling weights an emitter's radiance by it, so next-event estimation sees the
 // same emission as the rays that pass or stop at the emitter (MIS stays consistent).
 float sceneAlphaCoverage(uint triangle, vec2 b) {
-    SceneTriangle tri = scene_triangles.triangles[triangle];
+    SceneTriangle tri = sceneTriangle(triangle);
     SceneMaterial m = scene_materials.materials[tri.material];
     if (m.params.w == 0.0) return 1.0;
     float alpha = sceneAlphaOf(tri, m, b);
@@ -336,16 +336,16 @@ vec3 sceneEmission(uint material, vec2 uv, bool frontFacing) {
 // sceneTableEmitterPdf: within the alias table; sceneEmitterPdf: times the table's selection.
 float sceneTableEmitterPdf(uint triangle, vec3 origin, vec3 lightPosition) {
 #if SCENE_HAS_EMISSIVE
-    SceneMaterial m = scene_materials.materials[scene_triangles.triangles[triangle].material];
+    SceneMaterial m = scene_materials.materials[sceneTriangle(triangle).material];
     if (m.emissive.w <= 0.0 || !(scene_info.totalPower > 0.0)) return 0.0;
     uint base = 3u * triangle;
-    vec3 cr = cross(scene_bvh_triangles.positions[base + 1u].xyz,
-                    scene_bvh_triangles.positions[base + 2u].xyz);
+    vec3 cr = cross(sceneBvhPosition(base + 1u).xyz,
+                    sceneBvhPosition(base + 2u).xyz);
     vec3 toLight = lightPosition - origin;
 #if SCENE_LIGHT_SOLID_ANGLE
-    vec3 v0 = scene_bvh_triangles.positions[base].xyz - origin;
-    float omega = sceneTriangleSolidAngle(v0, v0 + scene_bvh_triangles.positions[base + 1u].xyz,
-                                          v0 + scene_bvh_triangles.positions[base + 2u].xyz);
+    vec3 v0 = sceneBvhPosition(base).xyz - origin;
+    float omega = sceneTriangleSolidAngle(v0, v0 + sceneBvhPosition(base + 1u).xyz,
+                                          v0 + sceneBvhPosition(base + 2u).xyz);
     // selection / omega, selection = density * area / totalPower (omega >= kSceneMinSolidAngle)
     if (sceneUseSolidAngle(omega))
         return m.emissive.w * 0.5 * length(cr) / (scene_info.totalPower * omega);
@@ -422,9 +422,9 @@ bool sceneSampleTableLight(vec3 position, vec4 u, inout SceneLightSample s) {
     }
 #if SCENE_HAS_EMISSIVE
     uint base = 3u * e.light;
-    vec3 v0 = scene_bvh_triangles.positions[base].xyz;
-    vec3 e1 = scene_bvh_triangles.positions[base + 1u].xyz;
-    vec3 e2 = scene_bvh_triangles.positions[base + 2u].xyz;
+    vec3 v0 = sceneBvhPosition(base).xyz;
+    vec3 e1 = sceneBvhPosition(base + 1u).xyz;
+    vec3 e2 = sceneBvhPosition(base + 2u).xyz;
     vec3 cr = cross(e1, e2);
     float crLen = length(cr);
     float area = 0.5 * crLen;
