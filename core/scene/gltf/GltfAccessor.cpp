@@ -144,12 +144,21 @@ void forSparse(const tinygltf::Model& model, const tinygltf::Accessor& accessor,
     }
 }
 
-// Why the limit is what it is, for the error message.
-std::string limitReason(bool hasBufferView) {
-    return hasBufferView ? " (the scene limits: " + std::to_string(kMaxSceneTriangles) +
-                               " triangles, " + std::to_string(kMaxSceneVertices) + " vertices)"
-                         : " for an accessor without buffer view (its zeros cost memory but no "
-                           "bytes in the file)";
+// Throws at <accessor>/count when the accessor has more elements than maxAccessorElements
+// allows, saying why the limit is what it is.
+void checkElementCount(const tinygltf::Accessor& accessor, size_t index, bool indices,
+                       const std::string& file) {
+    const bool hasBufferView = accessor.bufferView >= 0;
+    const uint64_t limit = maxAccessorElements(hasBufferView, indices);
+    if (accessor.count <= limit) return;
+    throw InputError(
+        file, accessorPointer(index) + "/count",
+        std::to_string(accessor.count) + (indices ? " indices" : " elements") +
+            " exceed fovea's limit of " + std::to_string(limit) +
+            (hasBufferView ? " (the scene limits: " + std::to_string(kMaxSceneTriangles) +
+                                 " triangles, " + std::to_string(kMaxSceneVertices) + " vertices)"
+                           : " for an accessor without buffer view (its zeros cost memory but "
+                             "no bytes in the file)"));
 }
 
 }  // namespace
@@ -165,12 +174,7 @@ std::vector<float> readAccessorFloats(const tinygltf::Model& model, size_t index
     }
     uint64_t elementBytes = component * components;
     uint64_t count = accessor.count;
-    const uint64_t limit = maxAccessorElements(accessor.bufferView >= 0, false);
-    if (count > limit) {
-        throw InputError(file, accessorPointer(index) + "/count",
-                         std::to_string(count) + " elements exceed fovea's limit of " +
-                             std::to_string(limit) + limitReason(accessor.bufferView >= 0));
-    }
+    checkElementCount(accessor, index, false, file);
     uint64_t total = count * components;
     std::vector<float> out(size_t(total), 0.0f);
     Elements elements = locate(model, accessor.bufferView, accessor.byteOffset, count, elementBytes,
@@ -197,12 +201,7 @@ std::vector<uint32_t> readAccessorIndices(const tinygltf::Model& model, size_t i
         throw InputError(file, accessorPointer(index), "indices must be unsigned scalars");
     }
     uint64_t bytes = componentBytes(uint64_t(type));
-    const uint64_t limit = maxAccessorElements(accessor.bufferView >= 0, true);
-    if (accessor.count > limit) {
-        throw InputError(file, accessorPointer(index) + "/count",
-                         std::to_string(accessor.count) + " indices exceed fovea's limit of " +
-                             std::to_string(limit) + limitReason(accessor.bufferView >= 0));
-    }
+    checkElementCount(accessor, index, true, file);
     std::vector<uint32_t> out(size_t(accessor.count), 0);
     Elements elements = locate(model, accessor.bufferView, accessor.byteOffset, accessor.count,
                                bytes, false, file, accessorPointer(index));
