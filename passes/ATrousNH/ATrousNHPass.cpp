@@ -171,8 +171,32 @@ void ATrousNHPass::compile(graph::CompileContext& ctx) {
     mTilesBuilt = false;
 }
 
-nlohmann::json ATrousNHPass::statistics(const graph::StatisticsContext&) const {
-    return {{"tile_list_builds", mTileBuilds}};
+nlohmann::json ATrousNHPass::statistics(const graph::StatisticsContext& ctx) const {
+    nlohmann::json out = {{"tile_list_builds", mTileBuilds}, {"tiles_full", mTileCount}};
+    if (mLastSchedule.empty()) return out;
+    // Read back after the run: the tile counts per key (tileArgs[k].w) and the fill levels the
+    // GPU let run (atrous_fill.executed, word 9).
+    std::vector<uint32_t> tileWords;
+    if (mUseTiles && mTilesBuilt) tileWords = ctx.buffer("tiles").downloadAs<uint32_t>(ctx.gpu);
+    const auto fillWords = ctx.buffer("fill_state").downloadAs<uint32_t>(ctx.gpu);
+    nlohmann::json levels = nlohmann::json::array();
+    uint64_t dispatched = 0;
+    for (size_t i = 0; i < mLastKeys.size(); ++i) {
+        const uint32_t key = mLastKeys[i];
+        const size_t word = size_t(key) * 4 + 3;
+        const uint64_t tiles = key == 0                  ? mTileCount
+                               : word < tileWords.size() ? tileWords[word]
+                                                         : 0;
+        dispatched += tiles;
+        levels.push_back({{"step", mLastSchedule[i].step},
+                          {"layers", mLastSchedule[i].layers},
+                          {"tiles", tiles}});
+    }
+    const bool anyFill = mLastKeys.size() < mLastSchedule.size();
+    out["levels"] = levels;
+    out["main_level_tiles"] = dispatched;
+    out["fill_levels_run"] = anyFill && fillWords.size() > 9 ? fillWords[9] : 0u;
+    return out;
 }
 
 ATrousScheduleOptions ATrousNHPass::scheduleOptions(int width, int height, int eyes) const {
@@ -257,6 +281,8 @@ void ATrousNHPass::execute(graph::ExecuteContext& ctx) {
     while (mainLevels < schedule.size() && !schedule[mainLevels].fill) ++mainLevels;
     const bool anyFill = mainLevels < schedule.size();
     const auto keys = levelTileKeys(schedule, mLayers, mUseTiles);
+    mLastSchedule = schedule;
+    mLastKeys = keys;
     uint32_t usedKeys = 0;
     for (uint32_t k : keys) usedKeys |= k != 0 ? 1u << k : 0u;
     if (usedKeys != 0) buildTileLists(ctx, usedKeys);

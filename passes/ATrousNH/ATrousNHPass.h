@@ -21,7 +21,10 @@ public:
     void compile(graph::CompileContext& ctx) override;
     void execute(graph::ExecuteContext& ctx) override;
     std::string variant() const override { return mVariant; }
-    // tile_list_builds: how often the tile lists were rebuilt (once per mask change).
+    // tile_list_builds: how often the tile lists were rebuilt (once per mask change); `levels`:
+    // the last frame's main levels (step, layers, 8x8 tiles dispatched, read back from the tile
+    // lists) and the fill levels that ran: the work a level does is its tiles, so a layer's
+    // cost is in proportion to the pixels it filters (seed 000 §3.4, Alg. 1).
     nlohmann::json statistics(const graph::StatisticsContext& ctx) const override;
 
     // The schedule execute() records for an image of `width` x `height` with `eyes` eyes.
@@ -76,6 +79,9 @@ private:
     vk::Image mTileMaskImage;
     uint32_t mTileKeys = 0;
     uint64_t mTileBuilds = 0;
+    // The last frame's schedule and tile keys, for statistics().
+    std::vector<ATrousDispatch> mLastSchedule;
+    std::vector<uint32_t> mLastKeys;
 };
 
 }  // namespace fovea::passes

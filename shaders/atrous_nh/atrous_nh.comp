@@ -92,9 +92,9 @@ int layerOf(ivec2 p) {
     return int(min((imageLoad(mask, p).r >> 1) & 3u, uint(pc.layerCount - 1)));
 }
 
-// exp(-d2 * invSigma2) in [0, 1]; a NaN (non-finite G-buffer) counts as no similarity.
-float edgeWeight(float d2, float invSigma2) {
-    float w = exp(-d2 * invSigma2);
+// exp(-exponent) in [0, 1]; a NaN (non-finite G-buffer) counts as no similarity.
+float edgeWeight(float exponent) {
+    float w = exp(-exponent);
     return isnan(w) ? 0.0 : w;
 }
 
@@ -138,24 +138,32 @@ void main() {
         invT2 /= max(dot(toEye, toEye), 1e-30);
     }
 
-    vec3 sum = vec3(0.0), plainSum = vec3(0.0);
-    float cum = 0.0, plainCum = 0.0;
+    // The centre tap has every distance 0, so weight 1 (a NaN G-buffer at p, which would
+    // make it 0, makes every other tap 0 as well: the result is the centre either way).
+    const float kCentreH = kB3[2] * kB3[2];
+    float cum = centreValid ? kCentreH : 0.0, plainCum = cum;
+    vec3 sum = centreValid ? centre.rgb * kCentreH : vec3(0.0), plainSum = sum;
     for (int dy = -2; dy <= 2; ++dy) {
         for (int dx = -2; dx <= 2; ++dx) {
+            if (dx == 0 && dy == 0) continue;  // the centre, above
             ivec2 q = p + pc.stepWidth * ivec2(dx, dy);
             if (q.x < x0 || q.x >= x1 || q.y < 0 || q.y >= pc.size.y) continue;
             vec4 s = loadState(q);
             if (s.a <= 0.5) continue;  // b(i, j) = 0: never sampled, not filled yet
             float h = kB3[dx + 2] * kB3[dy + 2];
-            float w = 1.0;
+            // The edge-stopping terms multiply (Dammertz Eq. 6 and its normal and position
+            // terms), so their exponents add: one exp per tap instead of one per term. Every
+            // term is >= 0, so the sum is >= 0 or +inf (weight 0); a NaN from a non-finite
+            // G-buffer makes the weight 0 below, as each term's own NaN did.
+            float e = 0.0;
             // Without a centre value there is no colour to compare with: geometry only.
             if (centreValid && pc.invSigmaColor2 > 0.0) {
                 vec3 d = centre.rgb - s.rgb;
-                w *= edgeWeight(dot(d, d), pc.invSigmaColor2);
+                e += dot(d, d) * pc.invSigmaColor2;
             }
             if (pc.invSigmaNormal2 > 0.0) {
                 vec3 d = np - texelFetch(normal, q, 0).xyz;
-                w *= edgeWeight(dot(d, d), invN2);
+                e += dot(d, d) * invN2;
             }
             if (pc.invSigmaPosition2 > 0.0) {
                 vec4 xq = texelFetch(position, q, 0);
@@ -168,11 +176,12 @@ void main() {
                 if (pc.positionPlane != 0) {
                     float t = dot(np, d);
                     // Along the plane a separate, looser sigma bounds the reach (0 = unbounded).
-                    w *= edgeWeight(max(d2 - t * t, 0.0), invT2);
+                    e += max(d2 - t * t, 0.0) * invT2;
                     d2 = xq.w == xpHit ? t * t : 1e30;
                 }
-                w *= edgeWeight(d2, invX2);
+                e += d2 * invX2;
             }
+            float w = edgeWeight(e);
             sum += s.rgb * (w * h);
             cum += w * h;
             plainSum += s.rgb * h;
