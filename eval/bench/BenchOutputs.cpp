@@ -271,8 +271,12 @@ void summaryTable(std::ostream& t, const std::vector<BenchResult>& results) {
           << benchNumber(r.frameMs.median, "%.3f") << " | " << benchNumber(r.speedup, "%.2fx")
           << " | " << benchNumber(m.rmsePercent, "%.4f")
           << standardErrorSuffix(r.errors, "rmse_percent", "%.4f") << " | "
-          << benchNumber(m.psnr, "%.2f") << " | " << benchNumber(m.ssim, "%.4f") << " | "
-          << benchNumber(m.flipMean, "%.4f") << standardErrorSuffix(r.errors, "flip_mean", "%.4f")
+          << benchNumber(m.psnr, "%.2f") << " | " << benchNumber(m.ssim, "%.4f")
+          << " | "
+          // NaN = not measured (bench "flip": false): a dash, not "nan ± nan".
+          << (std::isnan(m.flipMean) ? std::string("—")
+                                     : benchNumber(m.flipMean, "%.4f") +
+                                           standardErrorSuffix(r.errors, "flip_mean", "%.4f"))
           << " | " << benchNumber(r.temporalError, "%.5f") << " | " << (r.pareto ? "**yes**" : "")
           << " |\n";
     }

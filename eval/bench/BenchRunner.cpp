@@ -284,8 +284,11 @@ std::vector<BenchItem> benchPlan(const BenchSpec& spec) {
     std::vector<BenchItem> items;
     if (spec.reference.render) items.push_back({BenchItem::Kind::Reference, 0, 0, "reference"});
     if (spec.noiseFloorRender) items.push_back({BenchItem::Kind::NoiseFloor, 0, 0, "noise_floor"});
-    for (size_t g = 0; g < spec.graphs.size(); ++g)
-        for (size_t s = 0; s < spec.seeds.size(); ++s)
+    // Seed-major: every graph's run with the first seed, then every graph's with the next, so
+    // that a slow spell of a shared machine falls on all graphs alike (the seeds are interleaved
+    // repeats of the comparison) instead of on the one graph running at the time.
+    for (size_t s = 0; s < spec.seeds.size(); ++s)
+        for (size_t g = 0; g < spec.graphs.size(); ++g)
             items.push_back(
                 {BenchItem::Kind::Run, g, s, "g" + std::to_string(g) + "_s" + std::to_string(s)});
     return items;

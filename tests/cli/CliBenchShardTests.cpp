@@ -85,8 +85,9 @@ TEST(CliBenchShard, ItemsRunApartCollectToTheSameBench) {
     for (size_t i = 2; i < 6; ++i) {
         EXPECT_EQ(items[i].at("kind"), "run");
         EXPECT_EQ(items[i].at("needs"), json::array({0, 1})) << i;
-        EXPECT_EQ(items[i].at("seed"), i % 2 == 0 ? 1 : 2);
-        EXPECT_EQ(items[i].at("graph"), i < 4 ? "spp 1" : "spp 2");
+        // Seed-major: both graphs with seed 1, then both with seed 2 (interleaved repeats).
+        EXPECT_EQ(items[i].at("seed"), i < 4 ? 1 : 2);
+        EXPECT_EQ(items[i].at("graph"), i % 2 == 0 ? "spp 1" : "spp 2");
     }
 
     const fs::path shards = tmp / "shards";
