@@ -115,6 +115,37 @@ TEST(SceneGltfLarge, IndicesWithoutBufferViewKeepTheZeroAccessorLimit) {
     }
 }
 
+// Issue 28's bad input: a primitive that claims 2^31 triangles (3 * 2^31 indices, past any
+// 32-bit count) over a 12-byte buffer view is an input error at the accessor's count naming the
+// bytes it would need, before anything is allocated for it: no crash, no hang, no wrapped count.
+// (A view that really held 2^31 triangles, 25.8 GB, would meet the scene limit of 2^26 next.)
+TEST(SceneGltfLarge, PrimitiveClaiming2To31TrianglesIsAnInputError) {
+    LargeFolder tmp;
+    const fs::path file = tmp.path / "claims.gltf";
+    std::ofstream(tmp.path / "claims.bin", std::ios::binary) << std::string(48, '\0');
+    std::ofstream(file) << R"({"asset": {"version": "2.0"}, "scene": 0,
+        "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+        "accessors": [
+          {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+           "min": [0, 0, 0], "max": [0, 0, 0]},
+          {"bufferView": 1, "componentType": 5125, "count": 6442450944, "type": "SCALAR"}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36,
+                         "byteLength": 12}],
+        "buffers": [{"byteLength": 48, "uri": "claims.bin"}]})";
+    try {
+        scene::loadGltf(file);
+        FAIL() << "loaded";
+    } catch (const InputError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("/accessors/1/count"), std::string::npos) << what;
+        EXPECT_NE(what.find("6442450944"), std::string::npos) << what;
+        // The bytes it would need (4 per index) against the view's: checked in 64 bits.
+        EXPECT_NE(what.find("25769803776 bytes"), std::string::npos) << what;
+        EXPECT_NE(what.find("bufferView 1 has 12"), std::string::npos) << what;
+    }
+}
+
 // builtin:forest-10m holds every triangle in one mesh (no instancing): the count is pinned (a
 // change here is a change of the benchmark), and it keeps builtin:forest's lights and camera.
 TEST(SceneGltfLarge, Forest10mIsPinnedAndHoldsEveryTriangle) {
