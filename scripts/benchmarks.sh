@@ -21,6 +21,9 @@ OUT=out/benchmarks
 BENCHES="
 peres peres_cornell
 peres peres_forest
+peres peres_speed_cornell_240
+peres peres_speed_cornell_960
+peres peres_speed_forest_480
 koskela p2_table2_cornell
 koskela p2_table2_forest
 koskela p2_table2_helmet
@@ -36,6 +39,8 @@ vp koskela_vp_cornell_256_stereo
 vp koskela_vp_forest_256_stereo
 vp koskela_vp_vs_cartesian
 vp koskela_vp_coherence
+vp koskela_vp_speed_cornell_384
+vp koskela_vp_speed_cornell_1280x1440
 reblur denoisers_bevy_128
 reblur denoisers_bevy_256
 reblur denoisers_glossy_combined_128
@@ -90,7 +95,8 @@ run_table() {
   while read -r table file; do
     [ "$table" = "$want" ] || continue
     echo "== $table: graphs/benches/$file.json"
-    case $file in peres_*) peres_reference "${file#peres_}" ;; esac
+    # peres_speed_* render and cache their own references (bench "render").
+    case $file in peres_speed_*) ;; peres_*) peres_reference "${file#peres_}" ;; esac
     "$FOVEA" bench "graphs/benches/$file.json" --out "$OUT/$file" --overwrite --quiet < /dev/null
     summary "$OUT/$file/bench.json"
   done <<< "$BENCHES"
