@@ -9,6 +9,7 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -57,6 +58,9 @@ public:
     explicit EmbreeScene(const scene::TriangleMesh& mesh) {
         mDevice = rtcNewDevice(nullptr);
         if (!mDevice) throw RuntimeError("Embree: rtcNewDevice failed");
+        // Embree reports every allocation it makes (BVH, its geometry buffers, build scratch):
+        // the peak is its memory next to fovea's scene buffers.
+        rtcSetDeviceMemoryMonitorFunction(mDevice, &EmbreeScene::monitor, this);
         mScene = rtcNewScene(mDevice);
         rtcSetSceneBuildQuality(mScene, RTC_BUILD_QUALITY_HIGH);
         RTCGeometry g = rtcNewGeometry(mDevice, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -84,6 +88,9 @@ public:
     }
     EmbreeScene(const EmbreeScene&) = delete;
     EmbreeScene& operator=(const EmbreeScene&) = delete;
+    // Bytes Embree holds after the build, and the most it held at once (during the build).
+    int64_t bytes() const { return mBytes; }
+    int64_t peakBytes() const { return mPeakBytes; }
 
     // Closest hit: (t, mesh triangle or -1, u, v). Occlusion: x = 1 when occluded.
     glm::vec4 trace(const BenchRay& r, bool occlusion) const {
@@ -111,9 +118,20 @@ public:
     double buildMs() const { return mBuildMs; }
 
 private:
+    // RTCMemoryMonitorFunction: called before an allocation (bytes > 0) and after a release
+    // (bytes < 0); true lets the allocation go ahead. Embree calls it from its build threads.
+    static bool monitor(void* self, ssize_t bytes, bool /*post*/) {
+        auto* s = static_cast<EmbreeScene*>(self);
+        const int64_t now = s->mBytes.fetch_add(int64_t(bytes)) + int64_t(bytes);
+        int64_t peak = s->mPeakBytes.load();
+        while (now > peak && !s->mPeakBytes.compare_exchange_weak(peak, now)) {
+        }
+        return true;
+    }
     RTCDevice mDevice = nullptr;
     RTCScene mScene = nullptr;
     double mBuildMs = 0.0;
+    std::atomic<int64_t> mBytes{0}, mPeakBytes{0};
 };
 
 // Traces `rays` on all hardware threads; returns (results, milliseconds).
@@ -260,6 +278,15 @@ int main(int argc, char** argv) {
                     std::max(1u, std::thread::hardware_concurrency()));
         std::printf("BVH build: fovea %.1f ms (%u nodes), Embree %.1f ms\n",
                     gpuScene.bvhStats().buildMs, gpuScene.bvhStats().nodeCount, embree.buildMs());
+        // What each traces from: fovea's scene buffers on the device (geometry, BVH, materials,
+        // lights) against Embree's allocations (BVH and its copy of the geometry).
+        const double triangles = double(std::max<size_t>(sc.mesh.triangles.size(), 1));
+        std::printf(
+            "memory: fovea GPU %.1f MB (%.0f B/triangle), Embree %.1f MB after the build "
+            "(%.0f B/triangle), %.1f MB at its peak\n",
+            double(gpuScene.totalBytes()) / 1e6, double(gpuScene.totalBytes()) / triangles,
+            double(embree.bytes()) / 1e6, double(embree.bytes()) / triangles,
+            double(embree.peakBytes()) / 1e6);
         std::printf("%-8s %9s %12s %12s %12s %12s %7s %9s\n", "rays", "count", "fovea ms",
                     "Embree ms", "fovea Mray/s", "Embree Mray/s", "ratio", "agree %");
         double totalRays = 0, totalFovea = 0, totalEmbree = 0;
