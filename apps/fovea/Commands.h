@@ -47,6 +47,7 @@ struct RunOptions {
     // `fovea reference --path-frame F`: every frame uses camera-path frame F (a converged
     // reference of one frame of a moving camera path).
     std::optional<uint64_t> fixedCameraFrame;
+    bool profileDispatches = false;  // --profile-dispatches: per-dispatch GPU timestamps
 };
 
 void addRunCommand(CLI::App& app, RunOptions& options);

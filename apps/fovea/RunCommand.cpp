@@ -48,6 +48,9 @@ void addRunCommand(CLI::App& app, RunOptions& o) {
         ->check(nonEmptyValue());
     cmd->add_flag("--validation", o.validation, "enable the Vulkan validation layer");
     cmd->add_flag("--no-aliasing", o.graph.noAliasing, "give every transient image its own memory");
+    cmd->add_flag("--profile-dispatches", o.profileDispatches,
+                  "time every dispatch of every pass (report.json dispatch_gpu_ms; the "
+                  "timestamps between dispatches can slow the frame)");
     cmd->add_flag("--overwrite", o.overwrite, "allow writing into a non-empty output directory");
     cmd->add_flag("--quiet", o.quiet, "no progress on stderr");
     cmd->add_option("--reference", o.reference,
@@ -364,6 +367,7 @@ int runCommand(const RunOptions& o) {
     uploadScene(ctx, scene, o.quiet);
     GraphRunner runner(ctx, scene, desc,
                        {width, height, seed, !o.graph.noAliasing, o.fixedCameraFrame});
+    runner.graph().setDispatchProfiling(o.profileDispatches);
     comparison.attach(runner, foveationRadiiOf(desc));
     const OutputFolder folder(outDir, "--out", o.overwrite);
     InterruptGuard interrupt;

@@ -107,13 +107,17 @@ std::optional<uint64_t> GraphExecuteContext::inputVersion(const std::string& inp
 void GraphExecuteContext::dispatch(gpu::ComputePipeline& pipeline, uint32_t threadsX,
                                    uint32_t threadsY, uint32_t threadsZ) {
     mHazards.beforeDispatch(mCmd, pipeline);
+    mGraph.beginDispatchTiming(mCmd, mNode, pipeline.shaderPath());
     pipeline.dispatch(mCmd, threadsX, threadsY, threadsZ);
+    mGraph.endDispatchTiming(mCmd);
 }
 
 void GraphExecuteContext::dispatchIndirect(gpu::ComputePipeline& pipeline, const gpu::Buffer& args,
                                            vk::DeviceSize offset) {
     mHazards.beforeDispatch(mCmd, pipeline, args.buffer());
+    mGraph.beginDispatchTiming(mCmd, mNode, pipeline.shaderPath());
     pipeline.dispatchIndirect(mCmd, args, offset);
+    mGraph.endDispatchTiming(mCmd);
 }
 
 void GraphExecuteContext::bindFields(gpu::ComputePipeline& pipeline) {

@@ -44,6 +44,16 @@ struct PassRecord {
     // and the barriers the graph derived between them (gpu::DispatchHazards).
     uint64_t dispatches = 0;
     uint64_t barriersInPass = 0;
+    // With dispatch profiling (RenderGraph::setDispatchProfiling): the GPU time of each dispatch,
+    // keyed by shader and by its occurrence among that shader's dispatches in the pass's frame
+    // (ATrousNH's levels are atrous_nh.comp #0, #1, ...), one entry per frame it ran, in the
+    // order first seen. Empty without profiling.
+    struct DispatchTimes {
+        std::string shader;
+        uint32_t occurrence = 0;
+        std::vector<double> ms;
+    };
+    std::vector<DispatchTimes> dispatchMs;
 };
 
 struct FrameTiming {
@@ -125,6 +135,18 @@ public:
     // Pass::statistics of node `node` (null for culled passes or passes without counters).
     nlohmann::json passStatistics(size_t node) const;
 
+    // Opt-in profiling (fovea run --profile-dispatches): a GPU timestamp before and after every
+    // dispatch a pass records through its ExecuteContext, so PassRecord::dispatchMs splits the
+    // pass's time by dispatch (the first kMaxProfiledDispatches of a frame). Each timestamp waits
+    // for the commands before it, so profiled frames can be slower than plain ones.
+    void setDispatchProfiling(bool on) { mProfileDispatches = on; }
+    bool dispatchProfiling() const { return mProfileDispatches; }
+    static constexpr uint32_t kMaxProfiledDispatches = 1024;
+    // Used by GraphExecuteContext around each dispatch (no-ops without profiling).
+    void beginDispatchTiming(const vk::raii::CommandBuffer& cmd, size_t node,
+                             const std::string& shader);
+    void endDispatchTiming(const vk::raii::CommandBuffer& cmd);
+
     // Used by the contexts handed to passes.
     const gpu::Image& imageFor(size_t node, const std::string& field) const;
     const gpu::Buffer& bufferFor(size_t node, const std::string& field) const;
@@ -166,6 +188,16 @@ private:
     std::unique_ptr<gpu::Buffer> mDummyBuffer;
     std::vector<uint64_t> mLastCacheKey;  // per node; 0 = never ran
     std::unique_ptr<gpu::TimestampPool> mTimestamps;
+    // Dispatch profiling: the pool (made on the first profiled frame) and this frame's dispatches.
+    void collectDispatchTimes();
+    struct ProfiledDispatch {
+        size_t node;
+        std::string shader;
+    };
+    bool mProfileDispatches = false;
+    bool mDispatchOpen = false;  // a begin was written whose end is due
+    std::unique_ptr<gpu::TimestampPool> mDispatchTimestamps;
+    std::vector<ProfiledDispatch> mFrameDispatches;
     std::unique_ptr<vk::raii::CommandPool> mCommandPool;
     std::unique_ptr<vk::raii::CommandBuffer> mCommandBuffer;
     std::unique_ptr<vk::raii::Fence> mFence;

@@ -1,6 +1,8 @@
 // Frame execution of a RenderGraph: barriers, bypass, caching, timestamps.
+#include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <map>
 
 #include "core/graph/GraphContexts.h"
 #include "core/graph/RenderGraph.h"
@@ -196,6 +198,13 @@ FrameTiming RenderGraph::runFrame() {
     cmd.reset();
     cmd.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
     mTimestamps->reset(cmd);
+    mFrameDispatches.clear();
+    if (mProfileDispatches) {
+        if (!mDispatchTimestamps)
+            mDispatchTimestamps =
+                std::make_unique<gpu::TimestampPool>(mGpu, 2 * kMaxProfiledDispatches);
+        mDispatchTimestamps->reset(cmd);
+    }
     recordBufferInit(cmd);
     // The previous frame (and any upload or buffer clear) is ordered before this one by a full
     // barrier.
@@ -232,10 +241,48 @@ FrameTiming RenderGraph::runFrame() {
                 r.gpuMs.push_back(mTimestamps->ticksToMs(ticks[2 * pos + 1] - ticks[2 * pos]));
         }
     }
+    collectDispatchTimes();
     ++mFrame.index;
     ++mFrame.framesSinceReset;
     mFrame.cameraCut = false;
     return timing;
+}
+
+void RenderGraph::beginDispatchTiming(const vk::raii::CommandBuffer& cmd, size_t node,
+                                      const std::string& shader) {
+    mDispatchOpen = false;
+    if (!mProfileDispatches || !mDispatchTimestamps ||
+        mFrameDispatches.size() >= kMaxProfiledDispatches)
+        return;
+    mDispatchTimestamps->write(cmd, uint32_t(2 * mFrameDispatches.size()));
+    mFrameDispatches.push_back({node, shader});
+    mDispatchOpen = true;
+}
+
+void RenderGraph::endDispatchTiming(const vk::raii::CommandBuffer& cmd) {
+    if (!mDispatchOpen) return;
+    mDispatchTimestamps->write(cmd, uint32_t(2 * mFrameDispatches.size() - 1));
+    mDispatchOpen = false;
+}
+
+void RenderGraph::collectDispatchTimes() {
+    if (mFrameDispatches.empty()) return;
+    const auto ticks = mDispatchTimestamps->readTicks(uint32_t(2 * mFrameDispatches.size()));
+    // Occurrence = how many dispatches of the same shader the pass recorded before this one in
+    // this frame, so a pass's levels line up across frames even when some frames add dispatches
+    // of another shader (e.g. ATrousNH's tile lists, rebuilt only when the mask changes).
+    std::map<std::pair<size_t, std::string>, uint32_t> seen;
+    for (size_t i = 0; i < mFrameDispatches.size(); ++i) {
+        const auto& [node, shader] = mFrameDispatches[i];
+        const uint32_t occurrence = seen[{node, shader}]++;
+        auto& times = mRecords[node].dispatchMs;
+        auto it = std::find_if(times.begin(), times.end(), [&](const auto& t) {
+            return t.shader == shader && t.occurrence == occurrence;
+        });
+        if (it == times.end()) it = times.insert(times.end(), {shader, occurrence, {}});
+        it->ms.push_back(mDispatchTimestamps->ticksToMs(ticks[2 * i + 1] - ticks[2 * i]));
+    }
+    mFrameDispatches.clear();
 }
 
 }  // namespace fovea::graph

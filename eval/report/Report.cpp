@@ -42,6 +42,16 @@ nlohmann::json buildReport(const graph::RenderGraph& graph, const ReportInputs& 
                   {"dispatches", rec.dispatches},
                   {"barriers_in_pass", rec.barriersInPass},
                   {"gpu_ms", statsJson(computeStats(rec.gpuMs))}};
+        // With --profile-dispatches: the pass's time split by dispatch.
+        if (!rec.dispatchMs.empty()) {
+            json split = json::array();
+            for (const auto& d : rec.dispatchMs)
+                split.push_back({{"shader", d.shader},
+                                 {"occurrence", d.occurrence},
+                                 {"runs", d.ms.size()},
+                                 {"ms", statsJson(computeStats(d.ms))}});
+            p["dispatch_gpu_ms"] = split;
+        }
         // Which shader specialization ran (scene features, BRDF, ...), for passes that have one.
         if (node.pass) {
             std::string variant = node.pass->variant();

@@ -67,4 +67,41 @@ TEST(CliPassBarriers, EachDependentDispatchWaitsAndNoOtherDoes) {
     expectCounts("peres_nh3ld.json", {{"pt", {2, 1}}, {"dn", {21, 19}}});
 }
 
+TEST(CliPassBarriers, ProfileDispatchesSplitsEachPassByDispatch) {
+    // run --profile-dispatches: report.json's dispatch_gpu_ms times every dispatch, keyed by
+    // shader and occurrence; Base's ATrousNH shows its five levels, each in every frame, and
+    // their fastest runs together take no longer than the pass's slowest frame (the pass's
+    // timestamps enclose its dispatches).
+    TempDir tmp;
+    const Result r = runSmall(kRepo / "graphs" / "peres_base.json", tmp / "out",
+                              {"--save-frames", "none", "--profile-dispatches"});
+    ASSERT_EQ(r.code, 0) << r.describe();
+    const json report = readReport(tmp / "out");
+    bool found = false;
+    for (const auto& p : report.at("passes")) {
+        if (p.at("name") != "dn") continue;
+        found = true;
+        const json& split = p.at("dispatch_gpu_ms");
+        ASSERT_EQ(split.size(), 5u) << split.dump();
+        double sum = 0.0;
+        for (uint32_t i = 0; i < 5; ++i) {
+            EXPECT_EQ(split[i].at("shader"), "atrous_nh/atrous_nh.comp");
+            EXPECT_EQ(split[i].at("occurrence"), i);
+            EXPECT_EQ(split[i].at("runs"), 2);
+            EXPECT_GE(split[i].at("ms").at("median").get<double>(), 0.0);
+            sum += split[i].at("ms").at("min").get<double>();
+        }
+        EXPECT_GT(sum, 0.0);
+        EXPECT_LE(sum, p.at("gpu_ms").at("max").get<double>());
+    }
+    EXPECT_TRUE(found);
+    // Without the flag there is no split (and no timestamps between dispatches).
+    TempDir plain;
+    const Result q =
+        runSmall(kRepo / "graphs" / "peres_base.json", plain / "out", {"--save-frames", "none"});
+    ASSERT_EQ(q.code, 0) << q.describe();
+    for (const auto& p : readReport(plain / "out").at("passes"))
+        EXPECT_FALSE(p.contains("dispatch_gpu_ms")) << p.at("name");
+}
+
 }  // namespace
