@@ -273,7 +273,9 @@ void RenderGraph::collectDispatchTimes() {
     // of another shader (e.g. ATrousNH's tile lists, rebuilt only when the mask changes).
     std::map<std::pair<size_t, std::string>, uint32_t> seen;
     for (size_t i = 0; i < mFrameDispatches.size(); ++i) {
-        const auto& [node, shader] = mFrameDispatches[i];
+        // Not a structured binding: clang 14 (the sanitizer build) lets no lambda capture one.
+        const size_t node = mFrameDispatches[i].node;
+        const std::string& shader = mFrameDispatches[i].shader;
         const uint32_t occurrence = seen[{node, shader}]++;
         auto& times = mRecords[node].dispatchMs;
         auto it = std::find_if(times.begin(), times.end(), [&](const auto& t) {
