@@ -140,7 +140,6 @@ public:
     // pass's time by dispatch (the first kMaxProfiledDispatches of a frame). Each timestamp waits
     // for the commands before it, so profiled frames can be slower than plain ones.
     void setDispatchProfiling(bool on) { mProfileDispatches = on; }
-    bool dispatchProfiling() const { return mProfileDispatches; }
     static constexpr uint32_t kMaxProfiledDispatches = 1024;
     // Used by GraphExecuteContext around each dispatch (no-ops without profiling).
     void beginDispatchTiming(const vk::raii::CommandBuffer& cmd, size_t node,

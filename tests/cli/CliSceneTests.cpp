@@ -10,12 +10,6 @@ namespace {
 
 const fs::path kDolly = kRepo / "graphs" / "cameras" / "cornell_dolly.json";
 
-const json& passNamed(const json& report, const std::string& name) {
-    for (const auto& p : report.at("passes"))
-        if (p.at("name") == name) return p;
-    throw std::runtime_error("no pass " + name + " in report");
-}
-
 }  // namespace
 
 TEST(CliScene, RunReportsTheSceneAndTheVariants) {

@@ -17,12 +17,6 @@ const fs::path kSuzanne = kRepo / ".." / "shared" / "scenes" / "suzanne" / "suza
 const fs::path kBoxTextured = kRepo / ".." / "shared" / "scenes" / "assimp-khronos-samples" /
                               "BoxTextured-glTF" / "BoxTextured.gltf";
 
-const json& skippedWorkPass(const json& report, const std::string& name) {
-    for (const auto& p : report.at("passes"))
-        if (p.at("name") == name) return p;
-    throw std::runtime_error("no pass " + name + " in report.json");
-}
-
 // report.json of graphs/<graph> run for `frames` frames at 64x32 with `extra` arguments.
 json runSkippedWork(const std::string& graph, std::vector<std::string> extra, int frames = 2) {
     TempDir tmp;
@@ -50,7 +44,7 @@ TEST(CliSkippedWork, SceneWithoutEmittersTracesNoLightSamples) {
     const json dark = runSkippedWork("pathtrace.json",
                                      {"--scene", kSuzanne.string(), "--set", "pt.countRays=true"});
     ASSERT_TRUE(dark.contains("passes"));
-    const json& pt = skippedWorkPass(dark, "pt");
+    const json& pt = passNamed(dark, "pt");
     const std::string variant = pt.at("variant");
     EXPECT_NE(variant.find("no-emissive"), std::string::npos) << variant;
     EXPECT_NE(variant.find("no-punctual"), std::string::npos) << variant;
@@ -61,7 +55,7 @@ TEST(CliSkippedWork, SceneWithoutEmittersTracesNoLightSamples) {
     const json lit = runSkippedWork(
         "pathtrace.json", {"--scene", kSuzanne.string(), "--sun", "--set", "pt.countRays=true"});
     ASSERT_TRUE(lit.contains("passes"));
-    const json& litPt = skippedWorkPass(lit, "pt");
+    const json& litPt = passNamed(lit, "pt");
     EXPECT_NE(litPt.at("variant").get<std::string>().find(",punctual"), std::string::npos);
     EXPECT_GT(skippedWorkStat(litPt, "rays_shadow_primary"), 0u);
 }
@@ -71,12 +65,12 @@ TEST(CliSkippedWork, SceneWithoutTexturesCompilesNoTextureFetch) {
     // variant names the choice. A textured file turns it on.
     const json plain = runSkippedWork("pathtrace.json", {"--scene", "builtin:cornell"}, 1);
     ASSERT_TRUE(plain.contains("passes"));
-    EXPECT_NE(skippedWorkPass(plain, "pt").at("variant").get<std::string>().find("no-textures"),
+    EXPECT_NE(passNamed(plain, "pt").at("variant").get<std::string>().find("no-textures"),
               std::string::npos);
     const json textured =
         runSkippedWork("pathtrace.json", {"--scene", kBoxTextured.string(), "--sun"}, 1);
     ASSERT_TRUE(textured.contains("passes"));
-    const std::string variant = skippedWorkPass(textured, "pt").at("variant");
+    const std::string variant = passNamed(textured, "pt").at("variant");
     EXPECT_NE(variant.find(",textures"), std::string::npos) << variant;
 }
 
@@ -88,7 +82,7 @@ TEST(CliSkippedWork, EmptyFoveationLayersDispatchNoTiles) {
     const json covered = runSkippedWork(
         "peres_nh3ld.json", {"--mono", "--set", "mask.r0=1000", "--set", "mask.r1=2000"});
     ASSERT_TRUE(covered.contains("passes"));
-    const json& dn = skippedWorkPass(covered, "dn");
+    const json& dn = passNamed(covered, "dn");
     const uint64_t full = skippedWorkStat(dn, "tiles_full");
     EXPECT_EQ(full, 8u * 4u);  // 64x32 in 8x8 tiles
     const json& levels = dn.at("statistics").at("levels");
@@ -101,7 +95,7 @@ TEST(CliSkippedWork, EmptyFoveationLayersDispatchNoTiles) {
     const json table1 = runSkippedWork("peres_nh3ld.json",
                                        {"--mono", "--set", "mask.r0=12", "--set", "mask.r1=16"});
     ASSERT_TRUE(table1.contains("passes"));
-    const json& dn1 = skippedWorkPass(table1, "dn");
+    const json& dn1 = passNamed(table1, "dn");
     const uint64_t level1 = dn1.at("statistics").at("levels")[1].at("tiles");
     EXPECT_GT(level1, 0u);
     EXPECT_LT(level1, full);
@@ -113,9 +107,9 @@ TEST(CliSkippedWork, UnchangedMaskBuildsTileListsOnceAndCachedPassesStayIdle) {
     const json report = runSkippedWork(
         "peres_nh3ld.json", {"--camera", "gltf:0", "--set", "mask.r0=6", "--set", "mask.r1=12"}, 3);
     ASSERT_TRUE(report.contains("passes"));
-    EXPECT_EQ(skippedWorkStat(skippedWorkPass(report, "dn"), "tile_list_builds"), 1u);
+    EXPECT_EQ(skippedWorkStat(passNamed(report, "dn"), "tile_list_builds"), 1u);
     for (const std::string cached : {"gb", "mask"}) {
-        const json& p = skippedWorkPass(report, cached);
+        const json& p = passNamed(report, cached);
         EXPECT_EQ(p.at("executions"), 1) << cached;
         EXPECT_EQ(p.at("status"), "cached") << cached;
     }

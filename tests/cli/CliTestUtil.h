@@ -16,6 +16,7 @@
 #include <random>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,13 @@ inline std::string readText(const fs::path& path) {
 
 inline json readReport(const fs::path& out) {
     return json::parse(readText(out / "report.json"));
+}
+
+// The entry of pass `name` in a report.json's `passes` (throws when there is none).
+inline const json& passNamed(const json& report, const std::string& name) {
+    for (const auto& p : report.at("passes"))
+        if (p.at("name") == name) return p;
+    throw std::runtime_error("no pass " + name + " in report.json");
 }
 
 inline void writeText(const fs::path& path, const std::string& text) {
